@@ -1,0 +1,218 @@
+//! N elasto-slide elements in parallel (the paper's eq. 5): fixed memory, nonlocal memory.
+
+use super::{Hysteresis, Trial};
+use crate::error::{Error, Field};
+
+/// Independent partial sums in the element loops.
+const LANES: usize = 4;
+
+#[inline]
+fn sum(lanes: [f64; LANES]) -> f64 {
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3])
+}
+
+/// `value` limited to [−limit, limit], for finite values and limit > 0 (no NaN handling, no
+/// panic path, unlike `f64::clamp`).
+#[inline]
+fn clamp(value: f64, limit: f64) -> f64 {
+    let low = if value < -limit { -limit } else { value };
+    if low > limit {
+        limit
+    } else {
+        low
+    }
+}
+
+/// Maxwell-slip bank of `N` elements with saturation forces `W` and break deflections `Delta`.
+///
+/// Element i has stiffness kᵢ = Wᵢ/Δᵢ and position ζᵢ; its deflection eᵢ = z − ζᵢ stays in
+/// [−Δᵢ, Δᵢ], and its force is kᵢ·eᵢ. The memory is the array of ζᵢ, whatever the history.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaxwellSlip<const N: usize> {
+    w: [f64; N],
+    delta: [f64; N],
+    stiffness: [f64; N],
+}
+
+impl<const N: usize> MaxwellSlip<N> {
+    /// Every `w[i]` and `delta[i]` must be finite and > 0, and N ≥ 1.
+    pub fn new(w: [f64; N], delta: [f64; N]) -> Result<Self, Error> {
+        if N == 0 {
+            return Err(Error::NoElements);
+        }
+        let mut stiffness = [0.0; N];
+        for index in 0..N {
+            if !(w[index].is_finite() && w[index] > 0.0) {
+                return Err(Error::Element {
+                    field: Field::W,
+                    index,
+                });
+            }
+            stiffness[index] = w[index] / delta[index];
+            // A break deflection so small that W/Δ overflows is not a usable spring either.
+            if !(delta[index].is_finite() && delta[index] > 0.0 && stiffness[index].is_finite()) {
+                return Err(Error::Element {
+                    field: Field::Delta,
+                    index,
+                });
+            }
+        }
+        Ok(Self {
+            w,
+            delta,
+            stiffness,
+        })
+    }
+
+    /// Saturation forces Wᵢ.
+    pub fn w(&self) -> &[f64; N] {
+        &self.w
+    }
+
+    /// Break deflections Δᵢ.
+    pub fn delta(&self) -> &[f64; N] {
+        &self.delta
+    }
+}
+
+impl<const N: usize> Hysteresis for MaxwellSlip<N> {
+    type Memory = [f64; N];
+
+    fn relaxed(&self) -> [f64; N] {
+        [0.0; N]
+    }
+
+    // The element loops are written with selects rather than branches (whether an element
+    // sticks changes from sample to sample, and mispredicted branches cost more than the
+    // arithmetic), and accumulate into LANES partial sums held in registers: one running sum
+    // would chain every addition to the latency of the previous one.
+
+    #[inline]
+    fn force(&self, zeta: &[f64; N], z: f64) -> f64 {
+        let mut force = [0.0; LANES];
+        for start in (0..N).step_by(LANES) {
+            for (lane, force) in force.iter_mut().enumerate() {
+                let i = start + lane;
+                if i < N {
+                    *force += self.stiffness[i] * clamp(z - zeta[i], self.delta[i]);
+                }
+            }
+        }
+        sum(force)
+    }
+
+    #[inline]
+    fn trial(&self, zeta: &[f64; N], z: f64) -> Trial {
+        let mut force = [0.0; LANES];
+        let mut slope_left = [0.0; LANES];
+        let mut slope_right = [0.0; LANES];
+        let mut left = [f64::NEG_INFINITY; LANES];
+        let mut right = [f64::INFINITY; LANES];
+        for start in (0..N).step_by(LANES) {
+            for lane in 0..LANES {
+                let i = start + lane;
+                if i >= N {
+                    break;
+                }
+                let (k, limit) = (self.stiffness[i], self.delta[i]);
+                // The element sticks while z ∈ [ζ − Δ, ζ + Δ]; those two points are breakpoints.
+                let lower = zeta[i] - limit;
+                let upper = zeta[i] + limit;
+                force[lane] += k * clamp(z - zeta[i], limit);
+                slope_right[lane] += if lower <= z && z < upper { k } else { 0.0 };
+                slope_left[lane] += if lower < z && z <= upper { k } else { 0.0 };
+                let above = if lower > z { lower } else { upper };
+                let below = if upper < z { upper } else { lower };
+                if above > z && above < right[lane] {
+                    right[lane] = above;
+                }
+                if below < z && below > left[lane] {
+                    left[lane] = below;
+                }
+            }
+        }
+        Trial {
+            force: sum(force),
+            slope_left: sum(slope_left),
+            slope_right: sum(slope_right),
+            left: left
+                .iter()
+                .fold(f64::NEG_INFINITY, |a, &b| if b > a { b } else { a }),
+            right: right
+                .iter()
+                .fold(f64::INFINITY, |a, &b| if b < a { b } else { a }),
+        }
+    }
+
+    #[inline]
+    fn commit(&self, zeta: &mut [f64; N], z: f64) -> f64 {
+        let mut force = [0.0; LANES];
+        for start in (0..N).step_by(LANES) {
+            for (lane, force) in force.iter_mut().enumerate() {
+                let i = start + lane;
+                if i < N {
+                    let deflection = z - zeta[i];
+                    let kept = clamp(deflection, self.delta[i]);
+                    // Only slipping elements move: rewriting a sticking ζ as z − (z − ζ) rounds.
+                    if kept != deflection {
+                        zeta[i] = z - kept;
+                    }
+                    *force += self.stiffness[i] * kept;
+                }
+            }
+        }
+        sum(force)
+    }
+
+    fn max_force(&self) -> f64 {
+        self.w.iter().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bank() -> MaxwellSlip<3> {
+        MaxwellSlip::new([1.0, 2.0, 3.0], [1e-6, 2e-6, 4e-6]).unwrap()
+    }
+
+    #[test]
+    fn saturates_and_slips() {
+        let bank = bank();
+        let mut zeta = bank.relaxed();
+        let trial = bank.trial(&zeta, 1.5e-6);
+        assert!((trial.force - (1.0 + 1.5 + 1.125)).abs() < 1e-12);
+        assert!((trial.slope_right - (1e6 + 0.75e6)).abs() < 1e-3);
+        assert_eq!(trial.slope_left, trial.slope_right);
+        assert_eq!((trial.left, trial.right), (1e-6, 2e-6));
+        assert_eq!(bank.commit(&mut zeta, 1e-5), 6.0);
+        assert_eq!(zeta, [1e-5 - 1e-6, 1e-5 - 2e-6, 1e-5 - 4e-6]);
+        assert_eq!(bank.trial(&zeta, 1e-5).force, 6.0);
+        // Every element has just slipped: each sticks to the left and saturates to the right.
+        let edge = bank.trial(&zeta, 1e-5);
+        assert!((edge.slope_left - 2.75e6).abs() < 1e-3);
+        assert_eq!(edge.slope_right, 0.0);
+        assert_eq!((edge.left, edge.right), (8e-6, f64::INFINITY));
+        assert_eq!(bank.max_force(), 6.0);
+    }
+
+    #[test]
+    fn rules_name_the_element() {
+        assert_eq!(
+            MaxwellSlip::new([1.0, -1.0], [1.0, 1.0]),
+            Err(Error::Element {
+                field: Field::W,
+                index: 1
+            })
+        );
+        assert_eq!(
+            MaxwellSlip::new([1.0, 1.0], [1.0, f64::INFINITY]),
+            Err(Error::Element {
+                field: Field::Delta,
+                index: 1
+            })
+        );
+        assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));
+    }
+}

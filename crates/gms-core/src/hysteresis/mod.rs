@@ -1,0 +1,54 @@
+//! The hysteresis force Fh(z) of the model, as a static map with memory.
+//!
+//! Two implementations: [`MaxwellSlip`], the modified Leuven model's N elasto-slide elements
+//! (eq. 5), and [`Linear`], Fh = σ0·z, which turns the same stepper into LuGre.
+
+mod linear;
+mod maxwell;
+
+pub use linear::Linear;
+pub use maxwell::MaxwellSlip;
+
+/// Fh at a candidate deflection and the linear pieces of Fh on either side of it, evaluated
+/// without committing (the memory stays as it was at step start).
+///
+/// The trial map is piecewise linear; at a breakpoint the slopes to the left and to the right
+/// differ, which is why both are given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trial {
+    /// Fh(z).
+    pub force: f64,
+    /// dFh/dz on the piece to the left of z.
+    pub slope_left: f64,
+    /// dFh/dz on the piece to the right of z.
+    pub slope_right: f64,
+    /// Start of the piece to the left: the nearest breakpoint below z (−∞ if none).
+    pub left: f64,
+    /// End of the piece to the right: the nearest breakpoint above z (+∞ if none).
+    pub right: f64,
+}
+
+/// A hysteresis force with a fixed-size memory per channel.
+///
+/// `trial(..).force` must be continuous and non-decreasing in `z` (every element is a spring or saturated), which is what
+/// makes the implicit step's equation have a unique root.
+pub trait Hysteresis {
+    /// The per-channel memory (one ζ per element, or nothing).
+    type Memory: Copy + core::fmt::Debug + PartialEq;
+
+    /// The memory of a relaxed channel at z = 0.
+    fn relaxed(&self) -> Self::Memory;
+
+    /// Fh at `z`, as if the memory were moved to `z` (nothing is written).
+    fn force(&self, memory: &Self::Memory, z: f64) -> f64;
+
+    /// Fh and its pieces at `z`, as if the memory were moved to `z` (nothing is written).
+    fn trial(&self, memory: &Self::Memory, z: f64) -> Trial;
+
+    /// Moves the memory to `z` (the elements that would be over-stretched slip) and returns
+    /// Fh(z), which equals the trial force at `z`.
+    fn commit(&self, memory: &mut Self::Memory, z: f64) -> f64;
+
+    /// sup |Fh| over all z (infinite for a linear spring).
+    fn max_force(&self) -> f64;
+}

@@ -1,0 +1,38 @@
+//! # gms-core
+//!
+//! The modified Leuven integrated friction model (Lampaert, Swevers, Al-Bender, IEEE TAC 2002)
+//! with its hysteresis force as a fixed-memory Maxwell-slip model, for hard real-time loops:
+//! `no_std`, no allocation, no panics in a step, no `unsafe`.
+//!
+//! - [`Stribeck`]: the constant-velocity curve g(v), s(v), optionally direction-dependent.
+//! - [`MaxwellSlip`] and [`Linear`]: the hysteresis force Fh(z) ([`Hysteresis`]).
+//! - [`Params`]: one validated parameter set that drives any number of channels, each a
+//!   [`State`]; [`Params::step`] and the block calls [`Params::simulate`] advance them.
+//!
+//! ```
+//! use gms_core::{LeuvenParams, MaxwellSlip, Scheme, Stribeck};
+//!
+//! let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0)?;
+//! let elements = MaxwellSlip::new([0.6, 0.5, 0.4, 0.3], [1e-6, 2e-6, 4e-6, 8e-6])?;
+//! let params = LeuvenParams::new(stribeck, 2.0, 30.0, 0.4, elements)?;
+//! let mut channel = params.relaxed_state();
+//! let force = params.step(&mut channel, 1e-3, 1e-3, Scheme::Implicit)?;
+//! assert!(force > 0.0);
+//! # Ok::<(), gms_core::Error>(())
+//! ```
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod error;
+pub mod hysteresis;
+mod math;
+mod model;
+mod solver;
+mod stribeck;
+
+pub use error::{Error, Field};
+pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial};
+pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
+pub use solver::{Solution, MAX_ITERATIONS};
+pub use stribeck::Stribeck;

@@ -1,0 +1,291 @@
+//! The modified Leuven model (eqs. 1, 3, 4, 5): parameters, per-channel state, the discrete step.
+//!
+//! The discrete step is the contract of DESIGN.md §2. The velocity vₖ is held over the step;
+//! the state equation dz/dt = f(z, v) = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ is advanced by backward Euler
+//! (`Implicit`, the default) or forward Euler (`Explicit`); the memory of the hysteresis is
+//! committed at the new z; the output is Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2·vₖ.
+
+use crate::error::{Error, Field};
+use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
+use crate::math::abs_pow;
+use crate::solver::{Residual, Solution};
+use crate::stribeck::{non_negative, positive, Stribeck};
+
+/// How the state equation is advanced over one step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Scheme {
+    /// Backward Euler: stable at any step with any stiffness.
+    #[default]
+    Implicit,
+    /// Forward Euler: kept for comparison; unstable when dt·|v|·stiffness/g(v) exceeds 2.
+    Explicit,
+}
+
+/// Parameters of one friction model, shared by any number of channels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params<H> {
+    stribeck: Stribeck,
+    n: f64,
+    sigma1: f64,
+    sigma2: f64,
+    hysteresis: H,
+}
+
+/// The modified Leuven model with an `N`-element Maxwell-slip hysteresis.
+pub type LeuvenParams<const N: usize> = Params<MaxwellSlip<N>>;
+
+/// The LuGre model: linear hysteresis (and n = 1 for the classic form).
+pub type LuGreParams = Params<Linear>;
+
+/// The state of one channel: deflection z, hysteresis memory, last position (for position input).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State<M> {
+    /// Average deflection of the asperity junctions z [m].
+    pub z: f64,
+    /// Memory of the hysteresis (ζ of each Maxwell-slip element).
+    pub memory: M,
+    /// The position of the previous position-input step; `None` on a fresh channel.
+    pub last_position: Option<f64>,
+}
+
+impl<H: Hysteresis> Params<H> {
+    /// Validates once: `n > 0`, `sigma1 >= 0`, `sigma2 >= 0`, and a hysteresis strong enough to
+    /// balance the Stribeck curve (`sum(W) > max(Fs, Fs_neg)`).
+    pub fn new(
+        stribeck: Stribeck,
+        n: f64,
+        sigma1: f64,
+        sigma2: f64,
+        hysteresis: H,
+    ) -> Result<Self, Error> {
+        positive(n, Field::n)?;
+        non_negative(sigma1, Field::sigma1)?;
+        non_negative(sigma2, Field::sigma2)?;
+        if hysteresis.max_force() <= stribeck.peak() {
+            return Err(Error::ElementsTooWeak);
+        }
+        Ok(Self {
+            stribeck,
+            n,
+            sigma1,
+            sigma2,
+            hysteresis,
+        })
+    }
+
+    /// The Stribeck curve.
+    pub fn stribeck(&self) -> &Stribeck {
+        &self.stribeck
+    }
+    /// Transition-curve exponent n.
+    pub fn n(&self) -> f64 {
+        self.n
+    }
+    /// Micro-viscous coefficient σ1.
+    pub fn sigma1(&self) -> f64 {
+        self.sigma1
+    }
+    /// Viscous coefficient σ2.
+    pub fn sigma2(&self) -> f64 {
+        self.sigma2
+    }
+    /// The hysteresis force.
+    pub fn hysteresis(&self) -> &H {
+        &self.hysteresis
+    }
+
+    /// A relaxed channel: z = 0, every element undeflected, no previous position.
+    pub fn relaxed_state(&self) -> State<H::Memory> {
+        State {
+            z: 0.0,
+            memory: self.hysteresis.relaxed(),
+            last_position: None,
+        }
+    }
+
+    /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
+    pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
+        let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);
+        v - libm::fabs(v) * libm::copysign(abs_pow(u, self.n), u)
+    }
+
+    /// One step with velocity input `v` held over `dt`; returns the friction force.
+    ///
+    /// A non-finite `v`, a `dt` that is not finite and > 0, or a diverging explicit step is
+    /// reported and leaves the state untouched. Never panics, never allocates.
+    pub fn step(
+        &self,
+        state: &mut State<H::Memory>,
+        v: f64,
+        dt: f64,
+        scheme: Scheme,
+    ) -> Result<f64, Error> {
+        check_dt(dt)?;
+        if !v.is_finite() {
+            return Err(Error::NotFinite {
+                field: Field::v,
+                index: 0,
+            });
+        }
+        self.advance(state, v, dt, scheme)
+    }
+
+    /// One step with position input `x`: v = (x − x_prev)/dt, and v = 0 on a fresh channel.
+    pub fn step_position(
+        &self,
+        state: &mut State<H::Memory>,
+        x: f64,
+        dt: f64,
+        scheme: Scheme,
+    ) -> Result<f64, Error> {
+        check_dt(dt)?;
+        if !x.is_finite() {
+            return Err(Error::NotFinite {
+                field: Field::x,
+                index: 0,
+            });
+        }
+        self.advance_position(state, x, dt, scheme)
+    }
+
+    /// Runs `v` through one channel, writing the forces into `out` (same length).
+    ///
+    /// Inputs are checked before the state is touched. If an explicit step diverges at sample k,
+    /// `out[..k]` and the state hold the result of the first k samples.
+    pub fn simulate(
+        &self,
+        state: &mut State<H::Memory>,
+        v: &[f64],
+        dt: f64,
+        scheme: Scheme,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        check_block(v, Field::v, dt, out)?;
+        for (index, (&v, out)) in v.iter().zip(out.iter_mut()).enumerate() {
+            *out = self
+                .advance(state, v, dt, scheme)
+                .map_err(|error| at_sample(error, index))?;
+        }
+        Ok(())
+    }
+
+    /// Runs positions `x` through one channel, writing the forces into `out` (same length).
+    pub fn simulate_position(
+        &self,
+        state: &mut State<H::Memory>,
+        x: &[f64],
+        dt: f64,
+        scheme: Scheme,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        check_block(x, Field::x, dt, out)?;
+        for (index, (&x, out)) in x.iter().zip(out.iter_mut()).enumerate() {
+            *out = self
+                .advance_position(state, x, dt, scheme)
+                .map_err(|error| at_sample(error, index))?;
+        }
+        Ok(())
+    }
+
+    /// The implicit step's root for this state and input, without committing anything.
+    ///
+    /// Exposed so that the solver's accuracy and iteration count can be checked from outside.
+    pub fn solve_implicit(&self, state: &State<H::Memory>, v: f64, dt: f64) -> Solution {
+        self.residual(state, v, dt).solve()
+    }
+
+    /// R(y) of the implicit step from this state (zero at the step's solution).
+    pub fn implicit_residual(&self, state: &State<H::Memory>, v: f64, dt: f64, y: f64) -> f64 {
+        self.residual(state, v, dt).evaluate(y)
+    }
+
+    fn residual<'a>(&'a self, state: &'a State<H::Memory>, v: f64, dt: f64) -> Residual<'a, H> {
+        Residual {
+            hysteresis: &self.hysteresis,
+            memory: &state.memory,
+            z: state.z,
+            dt_v: dt * v,
+            dt_abs_v: dt * libm::fabs(v),
+            inverse_g: 1.0 / self.stribeck.g(v),
+            n: self.n,
+        }
+    }
+
+    /// The step proper, for inputs already checked.
+    #[inline]
+    fn advance(
+        &self,
+        state: &mut State<H::Memory>,
+        v: f64,
+        dt: f64,
+        scheme: Scheme,
+    ) -> Result<f64, Error> {
+        let z = state.z;
+        let z_next = match scheme {
+            Scheme::Implicit => self.solve_implicit(state, v, dt).z,
+            Scheme::Explicit => z + dt * self.state_derivative(state, z, v),
+        };
+        if !z_next.is_finite() {
+            return Err(Error::Diverged { index: 0 });
+        }
+        let mut memory = state.memory;
+        let force = self.hysteresis.commit(&mut memory, z_next)
+            + self.sigma1 * (z_next - z) / dt
+            + self.sigma2 * v;
+        if !force.is_finite() {
+            return Err(Error::Diverged { index: 0 });
+        }
+        state.memory = memory;
+        state.z = z_next;
+        Ok(force)
+    }
+
+    #[inline]
+    fn advance_position(
+        &self,
+        state: &mut State<H::Memory>,
+        x: f64,
+        dt: f64,
+        scheme: Scheme,
+    ) -> Result<f64, Error> {
+        let v = match state.last_position {
+            Some(previous) => (x - previous) / dt,
+            None => 0.0,
+        };
+        if !v.is_finite() {
+            return Err(Error::NotFinite {
+                field: Field::v,
+                index: 0,
+            });
+        }
+        let force = self.advance(state, v, dt, scheme)?;
+        state.last_position = Some(x);
+        Ok(force)
+    }
+}
+
+fn check_dt(dt: f64) -> Result<(), Error> {
+    positive(dt, Field::dt).map(|_| ())
+}
+
+fn check_block(input: &[f64], field: Field, dt: f64, out: &[f64]) -> Result<(), Error> {
+    if out.len() != input.len() {
+        return Err(Error::LengthMismatch {
+            expected: input.len(),
+            got: out.len(),
+        });
+    }
+    check_dt(dt)?;
+    match input.iter().position(|value| !value.is_finite()) {
+        Some(index) => Err(Error::NotFinite { field, index }),
+        None => Ok(()),
+    }
+}
+
+fn at_sample(error: Error, index: usize) -> Error {
+    match error {
+        Error::NotFinite { field, .. } => Error::NotFinite { field, index },
+        Error::Diverged { .. } => Error::Diverged { index },
+        other => other,
+    }
+}

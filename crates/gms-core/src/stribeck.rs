@@ -1,0 +1,192 @@
+//! The Stribeck curve: the constant-velocity friction level g(v) and its signed form s(v) (eq. 3).
+
+use crate::error::{Error, Field};
+use crate::math::abs_pow;
+
+/// g(v) = Fc + (Fs − Fc)·exp(−|v/Vs|^δ), with separate levels for v < 0 when asymmetric.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stribeck {
+    fc: f64,
+    fs: f64,
+    fc_neg: f64,
+    fs_neg: f64,
+    vs: f64,
+    delta: f64,
+    /// Above these values of |v/Vs|^δ the Stribeck term is below half an ulp of Fc (resp.
+    /// Fc_neg): adding it cannot change g, so the exponential is skipped.
+    negligible: f64,
+    negligible_neg: f64,
+}
+
+impl Stribeck {
+    /// A symmetric curve. `Fc > 0`, `Fs >= Fc`, `Vs > 0`, `delta > 0`, all finite.
+    pub fn new(fc: f64, fs: f64, vs: f64, delta: f64) -> Result<Self, Error> {
+        Self::asymmetric(fc, fs, fc, fs, vs, delta)
+    }
+
+    /// A curve whose levels for v < 0 are `fc_neg`, `fs_neg` (same rules as `fc`, `fs`).
+    pub fn asymmetric(
+        fc: f64,
+        fs: f64,
+        fc_neg: f64,
+        fs_neg: f64,
+        vs: f64,
+        delta: f64,
+    ) -> Result<Self, Error> {
+        positive(fc, Field::Fc)?;
+        positive(fs, Field::Fs)?;
+        positive(fc_neg, Field::Fc_neg)?;
+        positive(fs_neg, Field::Fs_neg)?;
+        positive(vs, Field::Vs)?;
+        positive(delta, Field::delta)?;
+        if fs < fc {
+            return Err(Error::StaticBelowCoulomb(Field::Fs));
+        }
+        if fs_neg < fc_neg {
+            return Err(Error::StaticBelowCoulomb(Field::Fs_neg));
+        }
+        Ok(Self {
+            fc,
+            fs,
+            fc_neg,
+            fs_neg,
+            vs,
+            delta,
+            negligible: negligible_above(fc, fs),
+            negligible_neg: negligible_above(fc_neg, fs_neg),
+        })
+    }
+
+    /// Coulomb level for v ≥ 0.
+    pub fn fc(&self) -> f64 {
+        self.fc
+    }
+    /// Static level for v ≥ 0.
+    pub fn fs(&self) -> f64 {
+        self.fs
+    }
+    /// Coulomb level for v < 0.
+    pub fn fc_neg(&self) -> f64 {
+        self.fc_neg
+    }
+    /// Static level for v < 0.
+    pub fn fs_neg(&self) -> f64 {
+        self.fs_neg
+    }
+    /// Stribeck velocity.
+    pub fn vs(&self) -> f64 {
+        self.vs
+    }
+    /// Stribeck shape exponent δ.
+    pub fn delta(&self) -> f64 {
+        self.delta
+    }
+
+    /// The largest level the curve reaches, max(Fs, Fs_neg).
+    pub fn peak(&self) -> f64 {
+        self.fs.max(self.fs_neg)
+    }
+
+    /// g(v) > 0, the magnitude of the steady sliding friction at velocity v.
+    #[inline]
+    pub fn g(&self, v: f64) -> f64 {
+        let (fc, fs, negligible) = if v < 0.0 {
+            (self.fc_neg, self.fs_neg, self.negligible_neg)
+        } else {
+            (self.fc, self.fs, self.negligible)
+        };
+        let exponent = abs_pow(v / self.vs, self.delta);
+        if exponent > negligible {
+            return fc;
+        }
+        fc + (fs - fc) * libm::exp(-exponent)
+    }
+
+    /// s(v) = sgn(v)·g(v), with s(0) = 0.
+    #[inline]
+    pub fn s(&self, v: f64) -> f64 {
+        if v == 0.0 {
+            0.0
+        } else {
+            libm::copysign(self.g(v), v)
+        }
+    }
+}
+
+/// The x beyond which (fs − fc)·exp(−x) < fc·2⁻⁵⁴, less than half an ulp of fc, so that
+/// fc + (fs − fc)·exp(−x) rounds to fc; one unit of margin covers the error of `exp` and `log`.
+fn negligible_above(fc: f64, fs: f64) -> f64 {
+    if fs == fc {
+        return -1.0;
+    }
+    libm::log((fs - fc) / fc) + 54.0 * core::f64::consts::LN_2 + 1.0
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn positive(value: f64, field: Field) -> Result<f64, Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::NotPositive(field))
+    }
+}
+
+/// Checks that `value` is finite and non-negative.
+pub(crate) fn non_negative(value: f64, field: Field) -> Result<f64, Error> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::Negative(field))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_at_rest_and_far_away() {
+        let curve = Stribeck::asymmetric(1.0, 1.5, 0.8, 1.2, 1e-3, 2.0).unwrap();
+        assert_eq!(curve.g(0.0), 1.5);
+        assert!((curve.g(1.0) - 1.0).abs() < 1e-12);
+        assert!((curve.g(-1e-12) - 1.2).abs() < 1e-12);
+        assert!((curve.s(-1.0) + 0.8).abs() < 1e-12);
+        assert_eq!(curve.s(0.0), 0.0);
+        assert_eq!(curve.peak(), 1.5);
+    }
+
+    #[test]
+    fn skipping_the_negligible_exponential_changes_nothing() {
+        let curve = Stribeck::asymmetric(1.0, 1.5, 0.3, 7.0, 1e-3, 1.7).unwrap();
+        for k in 0..4000 {
+            let v = (k as f64 - 2000.0) * 2e-5;
+            let (fc, fs) = if v < 0.0 { (0.3, 7.0) } else { (1.0, 1.5) };
+            let direct = fc + (fs - fc) * libm::exp(-libm::pow(libm::fabs(v / 1e-3), 1.7));
+            assert_eq!(curve.g(v), direct, "v = {v}");
+        }
+    }
+
+    #[test]
+    fn rules_name_the_field() {
+        assert_eq!(
+            Stribeck::new(0.0, 1.0, 1.0, 1.0),
+            Err(Error::NotPositive(Field::Fc))
+        );
+        assert_eq!(
+            Stribeck::new(2.0, 1.0, 1.0, 1.0),
+            Err(Error::StaticBelowCoulomb(Field::Fs))
+        );
+        assert_eq!(
+            Stribeck::new(1.0, 1.0, f64::NAN, 1.0),
+            Err(Error::NotPositive(Field::Vs))
+        );
+        assert_eq!(
+            Stribeck::new(1.0, 1.0, 1.0, -1.0),
+            Err(Error::NotPositive(Field::delta))
+        );
+        assert_eq!(
+            Stribeck::asymmetric(1.0, 1.0, 1.0, 0.5, 1.0, 1.0),
+            Err(Error::StaticBelowCoulomb(Field::Fs_neg))
+        );
+    }
+}

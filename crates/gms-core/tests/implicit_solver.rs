@@ -1,0 +1,177 @@
+//! The implicit step solves its equation: `solve_implicit` returns the root of
+//! R(y) = (y − z) − dt·v + dt·|v|·φ(Fh(y)/g(v)) to a relative 1e-12, within the iteration bound,
+//! for random parameters (n in (0.3, 4), n = 1, n = 2), random reachable states, velocities from
+//! 1 nm/s to 10 m/s of either sign, and time steps from 10 µs to 10 ms; and `step` commits that
+//! very root.
+//!
+//! The check does not trust the solver's own stopping rule: R is strictly increasing, so the
+//! root lies in [z − h, z + h] exactly when R(z − h) ≤ 0 ≤ R(z + h), which is what is evaluated
+//! (with h = 1e-12·(|z_start| + |z|), a band far wider than rounding and far narrower than any
+//! step the model takes).
+//!
+//! A dense deterministic sweep reports the largest iteration count (run with `--nocapture`).
+
+mod common;
+
+use common::{dt, exponent, leuven, log_uniform, reach, scheme, signed, stribeck, velocities};
+use gms_core::{
+    Hysteresis, LeuvenParams, Linear, LuGreParams, MaxwellSlip, Params, Scheme, Solution, State,
+    Stribeck, MAX_ITERATIONS,
+};
+use proptest::prelude::*;
+
+/// Checks the solution of one implicit step from `state` and returns its iteration count.
+fn root_is_bracketed<H: Hysteresis>(
+    params: &Params<H>,
+    state: &State<H::Memory>,
+    v: f64,
+    dt: f64,
+) -> Result<u32, TestCaseError> {
+    let Solution { z, iterations } = params.solve_implicit(state, v, dt);
+    prop_assert!(z.is_finite(), "no root: z = {}", z);
+    prop_assert!(
+        (1..=MAX_ITERATIONS).contains(&iterations),
+        "{} iterations",
+        iterations
+    );
+
+    let h = 1e-12 * (state.z.abs() + z.abs()) + 1e-300;
+    let below = params.implicit_residual(state, v, dt, z - h);
+    let above = params.implicit_residual(state, v, dt, z + h);
+    prop_assert!(
+        below <= 0.0 && above >= 0.0,
+        "root not within ±{:e} of z = {:e} (from z = {:e}): R(z − h) = {:e}, R(z + h) = {:e}",
+        h,
+        z,
+        state.z,
+        below,
+        above
+    );
+
+    // The step commits exactly the solver's root.
+    let mut stepped = *state;
+    params
+        .step(&mut stepped, v, dt, Scheme::Implicit)
+        .map_err(|error| TestCaseError::fail(error.to_string()))?;
+    prop_assert_eq!(stepped.z.to_bits(), z.to_bits());
+    Ok(iterations)
+}
+
+/// Velocities over ten decades, either sign.
+fn velocity() -> impl Strategy<Value = f64> {
+    signed(log_uniform(1e-9, 10.0))
+}
+
+fn solves_from_reachable_states<const N: usize>(
+    params: &LeuvenParams<N>,
+    history: &[f64],
+    history_scheme: Scheme,
+    (v, dt): (f64, f64),
+) -> Result<(), TestCaseError> {
+    let mut state = params.relaxed_state();
+    reach(params, &mut state, history, dt, history_scheme);
+    root_is_bracketed(params, &state, v, dt)?;
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn solves_n1(
+        params in leuven::<1>(), history in velocities(), scheme in scheme(), input in (velocity(), dt())
+    ) {
+        solves_from_reachable_states(&params, &history, scheme, input)?;
+    }
+
+    #[test]
+    fn solves_n4(
+        params in leuven::<4>(), history in velocities(), scheme in scheme(), input in (velocity(), dt())
+    ) {
+        solves_from_reachable_states(&params, &history, scheme, input)?;
+    }
+
+    #[test]
+    fn solves_n10(
+        params in leuven::<10>(), history in velocities(), scheme in scheme(), input in (velocity(), dt())
+    ) {
+        solves_from_reachable_states(&params, &history, scheme, input)?;
+    }
+
+    #[test]
+    fn solves_n32(
+        params in leuven::<32>(), history in velocities(), scheme in scheme(), input in (velocity(), dt())
+    ) {
+        solves_from_reachable_states(&params, &history, scheme, input)?;
+    }
+
+    /// LuGre: a linear spring of any stiffness, n = 1 (the classic form) or any other n.
+    #[test]
+    fn solves_lugre(
+        stribeck in stribeck(),
+        sigma0 in log_uniform(1e2, 1e8),
+        n in prop_oneof![Just(1.0), exponent()],
+        history in velocities(),
+        input in (velocity(), dt()),
+    ) {
+        let spring = Linear::new(sigma0).expect("valid stiffness");
+        let params: LuGreParams = Params::new(stribeck, n, 300.0, 0.4, spring).expect("valid parameters");
+        let mut state = params.relaxed_state();
+        reach(&params, &mut state, &history, input.1, Scheme::Implicit);
+        root_is_bracketed(&params, &state, input.0, input.1)?;
+    }
+}
+
+/// A fixed bank of `N` elements with break deflections spread over two decades.
+fn sweep_params<const N: usize>(n: f64) -> LeuvenParams<N> {
+    let stribeck = Stribeck::asymmetric(1.0, 1.5, 0.8, 1.3, 1e-3, 2.0).expect("valid curve");
+    let w = [2.0 / N as f64; N];
+    let delta = core::array::from_fn(|i| 1e-7 * 100f64.powf(i as f64 / N.max(2) as f64));
+    let elements = MaxwellSlip::new(w, delta).expect("valid elements");
+    Params::new(stribeck, n, 30.0, 0.4, elements).expect("valid parameters")
+}
+
+/// `count` points spread evenly over the decades from `lo` to `hi`.
+fn log_space(lo: f64, hi: f64, count: usize) -> impl Iterator<Item = f64> {
+    (0..count).map(move |i| lo * (hi / lo).powf(i as f64 / (count - 1) as f64))
+}
+
+/// The largest iteration count over a dense sweep of states, velocities and steps, for one N
+/// and n. The states are those along a decaying sine of velocity (sliding, reversals,
+/// presliding loops), every input from each of them is solved and checked.
+fn sweep<const N: usize>(n: f64) -> u32 {
+    let params = sweep_params::<N>(n);
+    let mut state = params.relaxed_state();
+    let mut worst = 0;
+    for k in 0..40 {
+        let t = k as f64 / 40.0;
+        let v = 1e-2 * (-3.0 * t).exp() * (2.0 * core::f64::consts::PI * 3.0 * t).sin();
+        params
+            .step(&mut state, v, 1e-3, Scheme::Implicit)
+            .expect("finite input");
+        for dt in log_space(1e-5, 1e-2, 7) {
+            for magnitude in log_space(1e-9, 10.0, 21) {
+                for v in [magnitude, -magnitude] {
+                    let iterations =
+                        root_is_bracketed(&params, &state, v, dt).unwrap_or_else(|error| {
+                            panic!("N = {N}, n = {n}, v = {v}, dt = {dt}: {error}")
+                        });
+                    worst = worst.max(iterations);
+                }
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn iteration_count_over_a_dense_sweep() {
+    let mut worst = 0;
+    for n in [0.3, 0.5, 1.0, 1.5, 2.0, 2.5, 4.0] {
+        let counts = [sweep::<1>(n), sweep::<4>(n), sweep::<10>(n), sweep::<32>(n)];
+        println!("n = {n}: max iterations for N = 1, 4, 10, 32: {counts:?}");
+        worst = worst.max(counts.into_iter().max().unwrap_or(0));
+    }
+    println!("max implicit iterations over the sweep: {worst}");
+    assert!(worst <= 20, "an implicit step took {worst} iterations");
+}

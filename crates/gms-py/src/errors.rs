@@ -1,0 +1,83 @@
+//! Python exception classes, and gms-core errors turned into expected-vs-got messages.
+
+use gms_core::{Error, Field};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::PyErr;
+
+use crate::spec::Spec;
+
+create_exception!(
+    leuven_rt,
+    ParameterError,
+    PyValueError,
+    "A friction-model parameter breaks its rule (DESIGN.md §2)."
+);
+create_exception!(
+    leuven_rt,
+    InputError,
+    PyValueError,
+    "An input signal, step size or option is not what the function expects."
+);
+create_exception!(
+    leuven_rt,
+    DivergenceError,
+    PyValueError,
+    "The explicit scheme blew up: the step is too large for the stiffness."
+);
+
+/// A parameter error with the value that broke the rule.
+pub fn parameter_error(error: Error, spec: &Spec) -> PyErr {
+    let message = match error {
+        Error::NotPositive(field) => {
+            format!(
+                "`{field}` must be finite and > 0, got {}",
+                spec.value(field)
+            )
+        }
+        Error::Negative(field) => {
+            format!(
+                "`{field}` must be finite and >= 0, got {}",
+                spec.value(field)
+            )
+        }
+        Error::StaticBelowCoulomb(Field::Fs_neg) => format!(
+            "`Fs_neg` must be >= `Fc_neg` = {}, got {}",
+            spec.value(Field::Fc_neg),
+            spec.value(Field::Fs_neg)
+        ),
+        Error::StaticBelowCoulomb(_) => format!(
+            "`Fs` must be >= `Fc` = {}, got {}",
+            spec.value(Field::Fc),
+            spec.value(Field::Fs)
+        ),
+        Error::Element { field, index } => {
+            format!(
+                "`{field}[{index}]` must be finite and > 0, got {}",
+                spec.element(field, index)
+            )
+        }
+        Error::ElementsTooWeak => format!(
+            "`sum(W)` must be > max(`Fs`, `Fs_neg`) = {}, got sum(W) = {}: the hysteresis force \
+             could never balance the Stribeck curve",
+            spec.value(Field::Fs).max(spec.value(Field::Fs_neg)),
+            spec.w.iter().sum::<f64>()
+        ),
+        other => other.to_string(),
+    };
+    ParameterError::new_err(message)
+}
+
+/// An error of a step or a block run, with the value that broke the rule where there is one.
+pub fn run_error(error: Error, value: f64) -> PyErr {
+    match error {
+        Error::Diverged { .. } => DivergenceError::new_err(error.to_string()),
+        Error::NotPositive(Field::dt) => {
+            InputError::new_err(format!("`dt` must be finite and > 0, got {value}"))
+        }
+        Error::NotFinite { field, index } => InputError::new_err(format!(
+            "`{field}` must be finite, got {value} at sample {index}"
+        )),
+        other => InputError::new_err(other.to_string()),
+    }
+}

@@ -1,0 +1,70 @@
+"""Checks shared by every entry point that takes signals, step sizes and scheme names.
+
+The Rust bindings and the numpy reference both go through these, so the same bad input gets the
+same error from either.
+"""
+
+from __future__ import annotations
+
+import numbers
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import InputError
+
+SCHEMES = ("implicit", "explicit")
+
+
+def as_signal(values: ArrayLike, name: str) -> tuple[NDArray[np.float64], bool]:
+    """A (B, T) C-contiguous float64 copy-free view where possible, and whether it was (T,).
+
+    Raises :class:`InputError` for values that are not real numbers, shapes other than (T,) or
+    (B, T) with B ≥ 1, and non-finite samples (naming the first one).
+    """
+    if np.iscomplexobj(values):
+        raise InputError(f"`{name}` must be real, got a complex array")
+    try:
+        array = np.ascontiguousarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise InputError(f"`{name}` must be castable to float64: {error}") from None
+    if array.ndim not in (1, 2):
+        raise InputError(f"`{name}` must have shape (T,) or (B, T), got shape {array.shape}")
+    one_dimensional = array.ndim == 1
+    if one_dimensional:
+        array = array.reshape(1, -1)
+    if array.shape[0] == 0:
+        raise InputError(f"`{name}` must have at least one channel, got shape {array.shape}")
+    finite = np.isfinite(array)
+    if not finite.all():
+        channel, sample = np.unravel_index(int(np.argmin(finite)), array.shape)
+        where = f"sample {sample}" if one_dimensional else f"channel {channel}, sample {sample}"
+        raise InputError(f"`{name}` must be finite, got {array[channel, sample]} at {where}")
+    return array, one_dimensional
+
+
+def as_channels(values: ArrayLike, name: str, channels: int) -> NDArray[np.float64]:
+    """One sample per channel: a finite float64 array of shape (channels,)."""
+    array, _ = as_signal(values, name)
+    if array.shape != (1, channels):
+        got = np.shape(values)
+        raise InputError(f"`{name}` must have shape ({channels},), got shape {got}")
+    return array[0]
+
+
+def check_dt(dt: Any) -> float:
+    """The step size as a float; must be a real number, finite and > 0."""
+    if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
+        raise InputError(f"`dt` must be a real number, got {dt!r}")
+    value = float(dt)
+    if not (np.isfinite(value) and value > 0.0):
+        raise InputError(f"`dt` must be finite and > 0, got {value}")
+    return value
+
+
+def check_scheme(scheme: Any) -> str:
+    """'implicit' or 'explicit'."""
+    if scheme not in SCHEMES:
+        raise InputError(f"`scheme` must be 'implicit' or 'explicit', got {scheme!r}")
+    return str(scheme)

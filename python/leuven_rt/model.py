@@ -1,0 +1,97 @@
+"""Stateful channels of one model, stepped sample by sample, with checkpoints."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _core
+from .errors import InputError
+from .inputs import as_channels, as_signal, check_dt
+from .params import Params, as_params
+
+
+@dataclass(frozen=True, eq=False)
+class ModelState:
+    """A checkpoint of every channel: copies, safe to keep while the model runs on."""
+
+    z: NDArray[np.float64]
+    """Deflection z of each channel, shape (B,)."""
+    zeta: NDArray[np.float64]
+    """Position ζ of each Maxwell-slip element, shape (B, N); (B, 0) for linear hysteresis."""
+    last_position: NDArray[np.float64]
+    """Position of the previous position-input step, shape (B,); meaningful where has_last_position."""
+    has_last_position: NDArray[np.bool_]
+    """Whether a channel has seen a position-input step since it was relaxed, shape (B,)."""
+
+
+class LeuvenModel(_core.Engine):
+    """``channels`` channels of the model with parameters ``params``, stepped in Rust.
+
+    ``step(v, dt) -> float`` and ``step_position(x, dt) -> float`` advance a single-channel model
+    by one sample (the fast path for control loops); ``step_channels`` advances B channels at
+    once; ``run`` continues from the current state over a whole signal. ``state`` and
+    ``set_state`` take and restore checkpoints; ``reset`` relaxes every channel.
+    """
+
+    def __new__(
+        cls, params: Params | Mapping[str, Any], channels: int = 1, scheme: str = "implicit"
+    ) -> LeuvenModel:
+        if isinstance(channels, bool) or not isinstance(channels, int):
+            raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
+        return super().__new__(cls, as_params(params), channels, scheme)
+
+    def __repr__(self) -> str:
+        return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
+
+    def step_channels(self, v: ArrayLike, dt: float) -> NDArray[np.float64]:
+        """One step of every channel with velocities ``v`` of shape (B,); returns (B,) forces."""
+        return self._step_channels(as_channels(v, "v", self.channels), check_dt(dt), False)
+
+    def step_channels_position(self, x: ArrayLike, dt: float) -> NDArray[np.float64]:
+        """One step of every channel with positions ``x`` of shape (B,); returns (B,) forces."""
+        return self._step_channels(as_channels(x, "x", self.channels), check_dt(dt), True)
+
+    def run(self, v: ArrayLike, dt: float) -> NDArray[np.float64]:
+        """Continues every channel over velocities ``v``: (T,) for one channel or (B, T)."""
+        return self._run_signal(v, "v", dt)
+
+    def run_position(self, x: ArrayLike, dt: float) -> NDArray[np.float64]:
+        """Continues every channel over positions ``x``: (T,) for one channel or (B, T)."""
+        return self._run_signal(x, "x", dt)
+
+    def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> NDArray[np.float64]:
+        array, one_dimensional = as_signal(signal, name)
+        if array.shape[0] != self.channels or (one_dimensional and self.channels != 1):
+            expected = "(T,) or (1, T)" if self.channels == 1 else f"({self.channels}, T)"
+            raise InputError(f"`{name}` must have shape {expected}, got shape {np.shape(signal)}")
+        out = self._run(array, check_dt(dt), name == "x")
+        return out[0] if one_dimensional else out
+
+    @property
+    def state(self) -> ModelState:
+        """A checkpoint of every channel."""
+        return ModelState(*self._get_state())
+
+    def set_state(self, state: ModelState) -> None:
+        """Restores a checkpoint taken from a model with the same channels and elements."""
+        if not isinstance(state, ModelState):
+            raise InputError(f"`state` must be a ModelState, got {type(state).__name__}")
+        b, n = self.channels, self.elements
+        expected = {"z": (b,), "zeta": (b, n), "last_position": (b,), "has_last_position": (b,)}
+        arrays = {}
+        for name, shape in expected.items():
+            array = np.asarray(getattr(state, name))
+            if array.shape != shape:
+                raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
+            if name == "has_last_position":
+                arrays[name] = np.ascontiguousarray(array, dtype=np.bool_)
+            else:
+                arrays[name] = np.ascontiguousarray(array, dtype=np.float64)
+                if not np.isfinite(arrays[name]).all():
+                    raise InputError(f"`state.{name}` must be finite")
+        self._set_state(arrays["z"], arrays["zeta"], arrays["last_position"], arrays["has_last_position"])

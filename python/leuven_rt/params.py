@@ -1,0 +1,151 @@
+"""Parameters of the modified Leuven model: one validated, immutable set, with its JSON form.
+
+The keys are those of DESIGN.md §2. Validation is gms-core's, called once at construction, so
+that Python and Rust accept exactly the same parameter sets.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, fields
+from os import PathLike
+from pathlib import Path
+from typing import Any
+
+from . import _core
+from .errors import ParameterError
+
+#: Keys that every parameter set must give.
+REQUIRED_KEYS = ("Fc", "Fs", "Vs", "delta", "n")
+
+
+def _real(key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"`{key}` must be a real number, got {value!r}")
+    return float(value)
+
+
+def _reals(key: str, values: Any) -> tuple[float, ...]:
+    if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence,)) and not hasattr(
+        values, "__array__"
+    ):
+        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r}")
+    items = list(values.tolist() if hasattr(values, "tolist") else values)
+    if any(isinstance(item, (list, tuple)) for item in items):
+        raise ParameterError(f"`{key}` must be a flat sequence of real numbers, got {values!r}")
+    return tuple(_real(f"{key}[{index}]", item) for index, item in enumerate(items))
+
+
+@dataclass(frozen=True, kw_only=True)
+class Params:
+    """Modified Leuven model parameters (SI units).
+
+    Give the hysteresis either as Maxwell-slip elements (``W`` and ``Delta``, same length, at
+    most ``MAX_ELEMENTS``) or as a linear spring ``sigma0`` (LuGre when ``n = 1``).
+    ``Fc_neg``/``Fs_neg`` default to ``Fc``/``Fs``. Raises :class:`ParameterError` naming the
+    key and showing what was expected and what came.
+    """
+
+    Fc: float
+    Fs: float
+    Vs: float
+    delta: float
+    n: float
+    sigma1: float = 0.0
+    sigma2: float = 0.0
+    W: tuple[float, ...] | None = None
+    Delta: tuple[float, ...] | None = None
+    Fc_neg: float | None = None
+    Fs_neg: float | None = None
+    sigma0: float | None = None
+
+    def __post_init__(self) -> None:
+        for key in ("Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2"):
+            object.__setattr__(self, key, _real(key, getattr(self, key)))
+        for key in ("Fc_neg", "Fs_neg", "sigma0"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, _real(key, getattr(self, key)))
+        if (self.W is None) != (self.Delta is None):
+            given, missing = ("W", "Delta") if self.Delta is None else ("Delta", "W")
+            raise ParameterError(f"`{given}` was given without `{missing}`: give both or neither")
+        if self.W is not None and self.Delta is not None:
+            object.__setattr__(self, "W", _reals("W", self.W))
+            object.__setattr__(self, "Delta", _reals("Delta", self.Delta))
+        _core.check_params(self)
+
+    @property
+    def elements(self) -> int:
+        """Number of Maxwell-slip elements N (0 for linear hysteresis)."""
+        return 0 if self.W is None else len(self.W)
+
+    @property
+    def Fc_negative(self) -> float:
+        """The Coulomb level for v < 0 (``Fc_neg``, or ``Fc`` when not given)."""
+        return self.Fc if self.Fc_neg is None else self.Fc_neg
+
+    @property
+    def Fs_negative(self) -> float:
+        """The static level for v < 0 (``Fs_neg``, or ``Fs`` when not given)."""
+        return self.Fs if self.Fs_neg is None else self.Fs_neg
+
+    def to_dict(self) -> dict[str, Any]:
+        """The parameter-file form: keys of DESIGN.md §2, unset optional keys left out."""
+        out: dict[str, Any] = {}
+        for field in fields(self):
+            value = getattr(self, field.name)
+            if value is not None:
+                out[field.name] = list(value) if isinstance(value, tuple) else value
+        return out
+
+    @classmethod
+    def from_dict(cls, mapping: Mapping[str, Any]) -> Params:
+        """Builds from a mapping with the keys of DESIGN.md §2; unknown or missing keys raise."""
+        if not isinstance(mapping, Mapping):
+            raise ParameterError(f"parameters must be a mapping, got {type(mapping).__name__}")
+        known = {field.name for field in fields(cls)}
+        unknown = sorted(set(mapping) - known)
+        if unknown:
+            raise ParameterError(f"unknown parameter keys {unknown}; expected keys among {sorted(known)}")
+        missing = [key for key in REQUIRED_KEYS if key not in mapping]
+        if missing:
+            raise ParameterError(f"missing parameter keys {missing}")
+        return cls(**mapping)
+
+    def to_json(self) -> str:
+        """The parameter file as JSON text."""
+        return json.dumps(self.to_dict(), indent=2)
+
+    @classmethod
+    def from_json(cls, text: str) -> Params:
+        """Parses JSON text of a parameter file."""
+        try:
+            mapping = json.loads(text)
+        except (TypeError, json.JSONDecodeError) as error:
+            raise ParameterError(f"parameters must be JSON text of an object: {error}") from None
+        return cls.from_dict(mapping)
+
+    def save(self, path: str | PathLike[str]) -> None:
+        """Writes the parameter file."""
+        Path(path).write_text(self.to_json() + "\n", encoding="utf-8")
+
+    @classmethod
+    def load(cls, path: str | PathLike[str]) -> Params:
+        """Reads a parameter file."""
+        return cls.from_json(Path(path).read_text(encoding="utf-8"))
+
+    def g(self, v: float) -> float:
+        """The Stribeck level g(v) > 0 (eq. 3), ``_neg`` levels for v < 0."""
+        fc, fs = (self.Fc_negative, self.Fs_negative) if v < 0 else (self.Fc, self.Fs)
+        return fc + (fs - fc) * math.exp(-(abs(v / self.Vs) ** self.delta))
+
+
+def as_params(params: Params | Mapping[str, Any]) -> Params:
+    """Accepts a :class:`Params` or a mapping of its keys."""
+    if isinstance(params, Params):
+        return params
+    if isinstance(params, Mapping):
+        return Params.from_dict(params)
+    raise ParameterError(f"`params` must be a leuven_rt.Params or a mapping, got {type(params).__name__}")
