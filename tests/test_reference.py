@@ -6,6 +6,7 @@ No comparison with the Rust core here; that lives in its own test file.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -118,7 +119,7 @@ def test_elements_never_exceed_their_break_deflection(
 ) -> None:
     """|z − ζᵢ| ≤ Δᵢ after every commit, up to the rounding of z − (z ∓ Δᵢ) (a few ulps)."""
     W, Delta = bank
-    params = Params(Fc=0.05, Fs=0.08, Vs=1e-3, delta=2.0, n=n, W=W, Delta=[*Delta])
+    params = Params(Fc=0.05, Fs=0.08, Vs=1e-3, delta=2.0, n=n, W=W, Delta=Delta)
     hysteresis = reference.hysteresis_of(params)
     z, zeta = 0.0, hysteresis.relaxed()
     limit = np.asarray(Delta)
@@ -221,7 +222,7 @@ def test_position_input_is_differenced_with_a_still_first_sample() -> None:
         (lambda: reference.simulate_position(MAXWELL, [-1e308, 1e308], 1e-3), "`v` must be finite"),
     ],
 )
-def test_bad_inputs_raise_input_error(call, message: str) -> None:  # noqa: ANN001
+def test_bad_inputs_raise_input_error(call: Callable[[], object], message: str) -> None:
     with pytest.raises(InputError, match=message):
         call()
 

@@ -25,9 +25,9 @@ def _demo(arguments: argparse.Namespace) -> int:
 
 
 def _accuracy(arguments: argparse.Namespace) -> int:
-    from .accuracy import format_table, step_accuracy
+    from .accuracy import report
 
-    print(format_table(step_accuracy()))
+    print(report())
     return 0
 
 

@@ -23,14 +23,17 @@ def as_signal(values: ArrayLike, name: str) -> tuple[NDArray[np.float64], bool]:
     Raises :class:`InputError` for values that are not real numbers, shapes other than (T,) or
     (B, T) with B ≥ 1, and non-finite samples (naming the first one).
     """
-    if np.iscomplexobj(values):
-        raise InputError(f"`{name}` must be real, got a complex array")
     try:
-        array = np.ascontiguousarray(values, dtype=np.float64)
+        if np.iscomplexobj(values):
+            raise InputError(f"`{name}` must be real, got a complex array")
+        array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as error:
+        if isinstance(error, InputError):
+            raise
         raise InputError(f"`{name}` must be castable to float64: {error}") from None
     if array.ndim not in (1, 2):
         raise InputError(f"`{name}` must have shape (T,) or (B, T), got shape {array.shape}")
+    array = np.ascontiguousarray(array)
     one_dimensional = array.ndim == 1
     if one_dimensional:
         array = array.reshape(1, -1)
@@ -45,11 +48,14 @@ def as_signal(values: ArrayLike, name: str) -> tuple[NDArray[np.float64], bool]:
 
 
 def as_channels(values: ArrayLike, name: str, channels: int) -> NDArray[np.float64]:
-    """One sample per channel: a finite float64 array of shape (channels,)."""
+    """One sample per channel: a finite float64 array of shape (channels,), and nothing else."""
+    try:
+        shape = np.shape(values)
+    except ValueError:
+        shape = None  # ragged: as_signal says what is wrong with it
+    if shape is not None and shape != (channels,):
+        raise InputError(f"`{name}` must have shape ({channels},), got shape {shape}")
     array, _ = as_signal(values, name)
-    if array.shape != (1, channels):
-        got = np.shape(values)
-        raise InputError(f"`{name}` must have shape ({channels},), got shape {got}")
     return array[0]
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numbers
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -11,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from .errors import InputError
-from .inputs import as_channels, as_signal, check_dt
+from .inputs import as_channels, as_signal, check_dt, check_scheme
 from .params import Params, as_params
 
 
@@ -41,9 +43,11 @@ class LeuvenModel(_core.Engine):
     def __new__(
         cls, params: Params | Mapping[str, Any], channels: int = 1, scheme: str = "implicit"
     ) -> LeuvenModel:
-        if isinstance(channels, bool) or not isinstance(channels, int):
+        if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
             raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
-        return super().__new__(cls, as_params(params), channels, scheme)
+        if not 1 <= channels <= sys.maxsize:
+            raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
+        return super().__new__(cls, as_params(params), int(channels), check_scheme(scheme))
 
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
@@ -85,13 +89,17 @@ class LeuvenModel(_core.Engine):
         expected = {"z": (b,), "zeta": (b, n), "last_position": (b,), "has_last_position": (b,)}
         arrays = {}
         for name, shape in expected.items():
-            array = np.asarray(getattr(state, name))
+            value = getattr(state, name)
+            boolean = name == "has_last_position"
+            try:
+                array = np.asarray(value, dtype=np.bool_ if boolean else np.float64)
+            except (TypeError, ValueError):
+                raise InputError(f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}") from None
+            if boolean and np.asarray(value).dtype != np.bool_:
+                raise InputError(f"`state.{name}` must be a boolean array, got dtype {np.asarray(value).dtype}")
             if array.shape != shape:
                 raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
-            if name == "has_last_position":
-                arrays[name] = np.ascontiguousarray(array, dtype=np.bool_)
-            else:
-                arrays[name] = np.ascontiguousarray(array, dtype=np.float64)
-                if not np.isfinite(arrays[name]).all():
-                    raise InputError(f"`state.{name}` must be finite")
+            if not boolean and not np.isfinite(array).all():
+                raise InputError(f"`state.{name}` must be finite")
+            arrays[name] = np.ascontiguousarray(array)
         self._set_state(arrays["z"], arrays["zeta"], arrays["last_position"], arrays["has_last_position"])

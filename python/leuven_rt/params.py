@@ -7,7 +7,6 @@ that Python and Rust accept exactly the same parameter sets.
 from __future__ import annotations
 
 import json
-import math
 import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, fields
@@ -135,11 +134,6 @@ class Params:
     def load(cls, path: str | PathLike[str]) -> Params:
         """Reads a parameter file."""
         return cls.from_json(Path(path).read_text(encoding="utf-8"))
-
-    def g(self, v: float) -> float:
-        """The Stribeck level g(v) > 0 (eq. 3), ``_neg`` levels for v < 0."""
-        fc, fs = (self.Fc_negative, self.Fs_negative) if v < 0 else (self.Fc, self.Fs)
-        return fc + (fs - fc) * math.exp(-(abs(v / self.Vs) ** self.delta))
 
 
 def as_params(params: Params | Mapping[str, Any]) -> Params:

@@ -150,8 +150,8 @@ impl<H: Hysteresis> Params<H> {
 
     /// Runs `v` through one channel, writing the forces into `out` (same length).
     ///
-    /// Inputs are checked before the state is touched. If an explicit step diverges at sample k,
-    /// `out[..k]` and the state hold the result of the first k samples.
+    /// All or nothing: if any sample is rejected (non-finite input, a diverging explicit step),
+    /// the state is left as it was before the call and the error names the sample.
     pub fn simulate(
         &self,
         state: &mut State<H::Memory>,
@@ -161,15 +161,11 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(v, Field::v, dt, out)?;
-        for (index, (&v, out)) in v.iter().zip(out.iter_mut()).enumerate() {
-            *out = self
-                .advance(state, v, dt, scheme)
-                .map_err(|error| at_sample(error, index))?;
-        }
-        Ok(())
+        run_block(state, v, out, |state, v| self.advance(state, v, dt, scheme))
     }
 
-    /// Runs positions `x` through one channel, writing the forces into `out` (same length).
+    /// Runs positions `x` through one channel, writing the forces into `out` (same length);
+    /// all or nothing, like [`Params::simulate`].
     pub fn simulate_position(
         &self,
         state: &mut State<H::Memory>,
@@ -179,12 +175,9 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
-        for (index, (&x, out)) in x.iter().zip(out.iter_mut()).enumerate() {
-            *out = self
-                .advance_position(state, x, dt, scheme)
-                .map_err(|error| at_sample(error, index))?;
-        }
-        Ok(())
+        run_block(state, x, out, |state, x| {
+            self.advance_position(state, x, dt, scheme)
+        })
     }
 
     /// The implicit step's root for this state and input, without committing anything.
@@ -280,6 +273,27 @@ fn check_block(input: &[f64], field: Field, dt: f64, out: &[f64]) -> Result<(), 
         Some(index) => Err(Error::NotFinite { field, index }),
         None => Ok(()),
     }
+}
+
+/// Steps through `input`; on the first error, puts the state back as it was and names the sample.
+#[inline]
+fn run_block<M: Copy>(
+    state: &mut State<M>,
+    input: &[f64],
+    out: &mut [f64],
+    mut step: impl FnMut(&mut State<M>, f64) -> Result<f64, Error>,
+) -> Result<(), Error> {
+    let before = *state;
+    for (index, (&sample, out)) in input.iter().zip(out.iter_mut()).enumerate() {
+        match step(state, sample) {
+            Ok(force) => *out = force,
+            Err(error) => {
+                *state = before;
+                return Err(at_sample(error, index));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn at_sample(error: Error, index: usize) -> Error {

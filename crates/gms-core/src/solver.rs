@@ -193,8 +193,31 @@ impl<H: Hysteresis> Residual<'_, H> {
             } else {
                 0.5 * (a + b)
             };
-            if libm::fabs(next - s) <= tolerance || b - a <= tolerance {
+            if b - a <= tolerance {
                 return Some(next.clamp(a, b));
+            }
+            if libm::fabs(next - s) <= tolerance {
+                // A tiny step is not proof of a root where the slope is huge (n < 1 near u = 0):
+                // accept only if P changes sign within the tolerance around the candidate.
+                let (below, above) = (next - tolerance, next + tolerance);
+                let (p_below, p_above) = (p(below), p(above));
+                if p_below <= 0.0 && p_above >= 0.0 {
+                    return Some(next.clamp(a, b));
+                }
+                if p_below > 0.0 {
+                    b = b.min(below);
+                } else {
+                    a = a.max(above);
+                }
+                previous = f64::INFINITY;
+                s = 0.5 * (a + b);
+                value = p(s);
+                if value < 0.0 {
+                    a = s;
+                } else {
+                    b = s;
+                }
+                continue;
             }
             previous = libm::fabs(value);
             s = next;

@@ -3,8 +3,8 @@
 //! force bitwise identical step after step, and the force is the hysteresis force Fh(z): the
 //! micro-viscous and viscous terms vanish with the motion.
 //!
-//! This is the property that the form dz/dt = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ of eq. (4) buys over
-//! v·(1 − Fh/s(v)…): no 0/0 at rest, and no creep.
+//! This is what writing eq. (4) as dz/dt = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ buys over the paper's
+//! v·(1 − sgn(Fh/s)·|Fh/s(v)|ⁿ), which is 0/0 at v = 0: no NaN at rest, and no creep.
 
 mod common;
 
@@ -26,15 +26,11 @@ fn zeros() -> impl Strategy<Value = Vec<f64>> {
     prop::collection::vec(prop_oneof![Just(0.0), Just(-0.0)], 1..200)
 }
 
-#[allow(clippy::too_many_arguments)]
+/// Reaches a state with `history` (velocities, dt, scheme), then feeds `zeros` the same way.
 fn nothing_moves<const N: usize>(
     params: &LeuvenParams<N>,
-    history: &[f64],
-    history_dt: f64,
-    history_scheme: Scheme,
-    zeros: &[f64],
-    dt: f64,
-    scheme: Scheme,
+    (history, history_dt, history_scheme): (&[f64], f64, Scheme),
+    (zeros, dt, scheme): (&[f64], f64, Scheme),
 ) -> Result<(), TestCaseError> {
     let mut state = params.relaxed_state();
     reach(params, &mut state, history, history_dt, history_scheme);
@@ -69,7 +65,7 @@ fn nothing_moves<const N: usize>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(common::config(96))]
 
     #[test]
     fn at_rest_n1(
@@ -77,7 +73,7 @@ proptest! {
         (history, history_dt, history_scheme) in (velocities(), dt(), scheme()),
         (zeros, dt, scheme) in (zeros(), dt(), scheme()),
     ) {
-        nothing_moves(&params, &history, history_dt, history_scheme, &zeros, dt, scheme)?;
+        nothing_moves(&params, (&history, history_dt, history_scheme), (&zeros, dt, scheme))?;
     }
 
     #[test]
@@ -86,7 +82,7 @@ proptest! {
         (history, history_dt, history_scheme) in (velocities(), dt(), scheme()),
         (zeros, dt, scheme) in (zeros(), dt(), scheme()),
     ) {
-        nothing_moves(&params, &history, history_dt, history_scheme, &zeros, dt, scheme)?;
+        nothing_moves(&params, (&history, history_dt, history_scheme), (&zeros, dt, scheme))?;
     }
 
     #[test]
@@ -95,7 +91,7 @@ proptest! {
         (history, history_dt, history_scheme) in (velocities(), dt(), scheme()),
         (zeros, dt, scheme) in (zeros(), dt(), scheme()),
     ) {
-        nothing_moves(&params, &history, history_dt, history_scheme, &zeros, dt, scheme)?;
+        nothing_moves(&params, (&history, history_dt, history_scheme), (&zeros, dt, scheme))?;
     }
 
     #[test]
@@ -104,7 +100,7 @@ proptest! {
         (history, history_dt, history_scheme) in (velocities(), dt(), scheme()),
         (zeros, dt, scheme) in (zeros(), dt(), scheme()),
     ) {
-        nothing_moves(&params, &history, history_dt, history_scheme, &zeros, dt, scheme)?;
+        nothing_moves(&params, (&history, history_dt, history_scheme), (&zeros, dt, scheme))?;
     }
 
     /// LuGre (linear hysteresis) rests the same way: z stays, F = sigma0·z.

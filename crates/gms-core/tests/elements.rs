@@ -4,7 +4,9 @@
 //! - After every step of either scheme, for N = 1, 4, 10, 32, random valid parameters, random
 //!   time steps and velocity sequences with reversals, plateaus and exact zeros: each element
 //!   either kept its ζᵢ or slipped to exactly z ∓ Δᵢ, and |eᵢ| = |z − ζᵢ| ≤ Δᵢ.
-//! - `trial` is non-decreasing in z, and committing at z does not change Fh(z) (no force jump
+//! - the hysteresis map around reachable memories: `trial` is non-decreasing in z and linear
+//!   up to the breakpoints it reports (the implicit solver walks those pieces), `force` and
+//!   `commit` return the trial force, and committing at z does not change Fh(z) (no force jump
 //!   when elements slip).
 //!
 //! All comparisons are exact except where a rounding of one operation is unavoidable; each such
@@ -67,8 +69,9 @@ fn deflections_stay_within_breaks<const N: usize>(
     Ok(())
 }
 
-/// `trial` over a grid of z around a reachable memory: monotone, and unchanged by a commit.
-fn trial_is_monotone_and_commit_is_continuous<const N: usize>(
+/// `trial` over a grid of z around a reachable memory: monotone, agreeing with `force` and with
+/// what `commit` returns, unchanged by a commit, and linear on the pieces it reports.
+fn hysteresis_map_is_consistent<const N: usize>(
     params: &LeuvenParams<N>,
     velocities: &[f64],
     dt: f64,
@@ -79,9 +82,15 @@ fn trial_is_monotone_and_commit_is_continuous<const N: usize>(
     reach(params, &mut state, velocities, dt, Scheme::Implicit);
     let scale = bank.delta().iter().fold(0.0f64, |a, &b| a.max(b));
     let total = bank.max_force();
-    // A sticking element at its break gives (W/Δ)·Δ, which can round one ulp above the W of the
-    // slipping element just beyond: Fh may dip by about an ulp of each W at a break.
-    let rounding = 2.0 * f64::EPSILON * total;
+    // Each element force kᵢ·(z − ζᵢ) carries the rounding of z − ζᵢ, an ulp of z, which is
+    // |z|/Δᵢ ulps of the element's range: the allowance grows with |z|/Δᵢ.
+    let rounding = |z: f64| -> f64 {
+        bank.w()
+            .iter()
+            .zip(bank.delta())
+            .map(|(&w, &limit)| 4.0 * f64::EPSILON * w * (1.0 + 2.0 * z.abs() / limit))
+            .sum()
+    };
 
     let mut grid: Vec<f64> = offsets
         .iter()
@@ -94,7 +103,7 @@ fn trial_is_monotone_and_commit_is_continuous<const N: usize>(
             bank.trial(&state.memory, pair[1]),
         );
         prop_assert!(
-            low.force <= high.force + rounding,
+            low.force <= high.force + rounding(pair[1]),
             "Fh({}) = {} > Fh({}) = {}",
             pair[0],
             low.force,
@@ -103,32 +112,49 @@ fn trial_is_monotone_and_commit_is_continuous<const N: usize>(
         );
     }
     for &z in &grid {
-        let before = bank.trial(&state.memory, z);
+        let trial = bank.trial(&state.memory, z);
+        prop_assert!(trial.force.abs() <= total * (1.0 + 4.0 * f64::EPSILON));
+        prop_assert_eq!(bank.force(&state.memory, z), trial.force);
+
+        // On each side, up to the reported breakpoint, Fh is the reported straight line.
+        prop_assert!(trial.left < z && z < trial.right);
+        for (end, slope) in [
+            (trial.left, trial.slope_left),
+            (trial.right, trial.slope_right),
+        ] {
+            let end = end.clamp(z - scale, z + scale); // the last piece on a side is unbounded
+            for fraction in [0.25, 0.5, 1.0] {
+                let y = z + fraction * (end - z);
+                let on_piece = trial.force + slope * (y - z);
+                let actual = bank.trial(&state.memory, y).force;
+                prop_assert!(
+                    (actual - on_piece).abs() <= rounding(z) + rounding(y),
+                    "Fh({}) = {}, the piece at z = {} says {}",
+                    y,
+                    actual,
+                    z,
+                    on_piece
+                );
+            }
+        }
+
+        // Committing returns the trial force and does not change Fh at z.
         let mut memory = state.memory;
-        bank.commit(&mut memory, z);
-        let after = bank.trial(&memory, z);
-        // A slipped element now reads k·(z − ζ) ≈ W instead of W: ζ = z ∓ Δ is rounded to an ulp
-        // of z, which is |z|/Δ ulps of the deflection, so the allowance grows with |z|/Δᵢ.
-        let commit_rounding: f64 = bank
-            .w()
-            .iter()
-            .zip(bank.delta())
-            .map(|(&w, &limit)| 2.0 * f64::EPSILON * w * (1.0 + z.abs() / limit))
-            .sum();
+        prop_assert_eq!(bank.commit(&mut memory, z), trial.force);
+        let after = bank.trial(&memory, z).force;
         prop_assert!(
-            (after.force - before.force).abs() <= commit_rounding,
+            (after - trial.force).abs() <= rounding(z),
             "commit at z = {} changed Fh from {} to {}",
             z,
-            before.force,
-            after.force
+            trial.force,
+            after
         );
-        prop_assert!(after.force.abs() <= total * (1.0 + 4.0 * f64::EPSILON));
     }
     Ok(())
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(common::config(128))]
 
     #[test]
     fn deflections_within_breaks_n1(
@@ -159,22 +185,22 @@ proptest! {
     }
 
     #[test]
-    fn trial_monotone_and_commit_continuous_n4(
+    fn hysteresis_map_consistent_n4(
         params in leuven::<4>(),
         v in velocities(),
         dt in dt(),
         offsets in prop::collection::vec(-3.0..3.0f64, 2..40),
     ) {
-        trial_is_monotone_and_commit_is_continuous(&params, &v, dt, &offsets)?;
+        hysteresis_map_is_consistent(&params, &v, dt, &offsets)?;
     }
 
     #[test]
-    fn trial_monotone_and_commit_continuous_n32(
+    fn hysteresis_map_consistent_n32(
         params in leuven::<32>(),
         v in velocities(),
         dt in dt(),
         offsets in prop::collection::vec(-3.0..3.0f64, 2..40),
     ) {
-        trial_is_monotone_and_commit_is_continuous(&params, &v, dt, &offsets)?;
+        hysteresis_map_is_consistent(&params, &v, dt, &offsets)?;
     }
 }

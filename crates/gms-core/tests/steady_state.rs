@@ -18,6 +18,7 @@ mod common;
 
 use common::{
     asymmetric_stribeck, coefficient, dt, exponent, log_uniform, saturation_forces, signed,
+    stribeck_level,
 };
 use gms_core::{LeuvenParams, MaxwellSlip, Params, Scheme, Stribeck};
 use proptest::array::uniform;
@@ -55,16 +56,14 @@ fn steps_to_settle<const N: usize>(
     ((initial / (1e-11 * g)).ln() / -contraction.ln()).ceil() as usize + 2
 }
 
-/// Parameters whose elements have the dimensionless steps `rho` at velocity `v` and step `dt`.
-#[allow(clippy::too_many_arguments)]
+/// The Stribeck curve, n, sigma1 and sigma2 of a case.
+type Model = (Stribeck, f64, f64, f64);
+
+/// Parameters whose elements have saturation forces in proportion to `weights` (adding up to
+/// `strength` times the peak level) and the dimensionless steps `rho` at velocity `v` and `dt`.
 fn build<const N: usize>(
-    stribeck: Stribeck,
-    n: f64,
-    sigma1: f64,
-    sigma2: f64,
-    weights: [f64; N],
-    strength: f64,
-    rho: [f64; N],
+    (stribeck, n, sigma1, sigma2): Model,
+    (weights, strength, rho): ([f64; N], f64, [f64; N]),
     v: f64,
     dt: f64,
 ) -> LeuvenParams<N> {
@@ -75,73 +74,64 @@ fn build<const N: usize>(
     Params::new(stribeck, n, sigma1, sigma2, elements).expect("valid parameters")
 }
 
+/// A Stribeck curve with asymmetric levels, n, sigma1 and sigma2.
+fn model() -> impl Strategy<Value = Model> {
+    (
+        asymmetric_stribeck(),
+        exponent(),
+        coefficient(),
+        coefficient(),
+    )
+}
+
 /// Any stiffness: ρᵢ from 0.1 (soft, slow) to 1000 (stiff, one-step).
 fn implicit_case<const N: usize>() -> impl Strategy<Value = Case<N>> {
-    (
-        (
-            asymmetric_stribeck(),
-            exponent(),
-            coefficient(),
-            coefficient(),
-        ),
-        (
-            uniform::<_, N>(0.05..1.0),
-            1.05..5.0,
-            uniform::<_, N>(log_uniform(0.1, 1e3)),
-        ),
-        signed(log_uniform(1e-6, 1.0)),
-        dt(),
+    let elements = (
+        uniform::<_, N>(0.05..1.0),
+        1.05..5.0,
+        uniform::<_, N>(log_uniform(0.1, 1e3)),
+    );
+    (model(), elements, signed(log_uniform(1e-6, 1.0)), dt()).prop_map(
+        |(model, (weights, strength, rho), v, dt)| {
+            let params = build(model, (weights, strength, rho), v, dt);
+            let slowest = rho.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+            let contraction = 1.0 / (1.0 + params.n().min(1.0) * slowest);
+            let steps = steps_to_settle(&params, v, dt, contraction);
+            Case {
+                params,
+                v,
+                dt,
+                steps,
+            }
+        },
     )
-        .prop_map(
-            |((stribeck, n, sigma1, sigma2), (weights, strength, rho), v, dt)| {
-                let params = build(stribeck, n, sigma1, sigma2, weights, strength, rho, v, dt);
-                let slowest = rho.iter().fold(f64::INFINITY, |a, &b| a.min(b));
-                let contraction = 1.0 / (1.0 + n.min(1.0) * slowest);
-                let steps = steps_to_settle(&params, v, dt, contraction);
-                Case {
-                    params,
-                    v,
-                    dt,
-                    steps,
-                }
-            },
-        )
 }
 
 /// Stable and monotone explicit steps: max(1, n)·Σρᵢ from 0.1 to 0.9.
 fn explicit_case<const N: usize>() -> impl Strategy<Value = Case<N>> {
-    (
-        (
-            asymmetric_stribeck(),
-            exponent(),
-            coefficient(),
-            coefficient(),
-        ),
-        (
-            uniform::<_, N>(0.05..1.0),
-            1.05..5.0,
-            uniform::<_, N>(0.5..1.0),
-            0.1..0.9,
-        ),
-        signed(log_uniform(1e-6, 1.0)),
-        dt(),
+    let elements = (
+        uniform::<_, N>(0.05..1.0),
+        1.05..5.0,
+        uniform::<_, N>(0.5..1.0),
+        0.1..0.9,
+    );
+    (model(), elements, signed(log_uniform(1e-6, 1.0)), dt()).prop_map(
+        |(model, (weights, strength, shares, total), v, dt)| {
+            let n = model.1;
+            let sum: f64 = shares.iter().sum();
+            let rho = shares.map(|share| total * share / (sum * n.max(1.0)));
+            let params = build(model, (weights, strength, rho), v, dt);
+            let slowest = rho.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+            let contraction = 1.0 - n.min(1.0) * slowest;
+            let steps = steps_to_settle(&params, v, dt, contraction);
+            Case {
+                params,
+                v,
+                dt,
+                steps,
+            }
+        },
     )
-        .prop_map(
-            |((stribeck, n, sigma1, sigma2), (weights, strength, shares, total), v, dt)| {
-                let sum: f64 = shares.iter().sum();
-                let rho = shares.map(|share| total * share / (sum * n.max(1.0)));
-                let params = build(stribeck, n, sigma1, sigma2, weights, strength, rho, v, dt);
-                let slowest = rho.iter().fold(f64::INFINITY, |a, &b| a.min(b));
-                let contraction = 1.0 - n.min(1.0) * slowest;
-                let steps = steps_to_settle(&params, v, dt, contraction);
-                Case {
-                    params,
-                    v,
-                    dt,
-                    steps,
-                }
-            },
-        )
 }
 
 fn settles_on_the_stribeck_curve<const N: usize>(
@@ -161,8 +151,11 @@ fn settles_on_the_stribeck_curve<const N: usize>(
             .step(&mut state, *v, *dt, scheme)
             .map_err(|e| TestCaseError::fail(e.to_string()))?;
     }
-    let expected = params.stribeck().s(*v) + params.sigma2() * v;
-    let scale = params.stribeck().g(*v) + params.sigma2() * v.abs();
+    // The Stribeck level from the DESIGN formula, not from the crate's own `s(v)`: a curve that
+    // mixed up the direction levels would otherwise agree with itself.
+    let level = stribeck_level(params.stribeck(), *v);
+    let expected = level.copysign(*v) + params.sigma2() * v;
+    let scale = level + params.sigma2() * v.abs();
     prop_assert!(
         (force - expected).abs() <= 1e-9 * scale,
         "after {} steps F = {}, expected s(v) + sigma2·v = {} (relative error {:e})",
@@ -175,7 +168,7 @@ fn settles_on_the_stribeck_curve<const N: usize>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(common::config(96))]
 
     #[test]
     fn implicit_settles_n1(case in implicit_case::<1>()) {

@@ -126,7 +126,7 @@ fn case<const N: usize>() -> impl Strategy<Value = (MaxwellSlip<N>, [f64; 4], us
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(common::config(128))]
 
     #[test]
     fn wiping_out_n4((bank, turns, steps) in case::<4>()) {

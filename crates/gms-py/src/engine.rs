@@ -9,7 +9,7 @@ use pyo3::PyResult;
 use rayon::prelude::*;
 use seq_macro::seq;
 
-use crate::errors::{parameter_error, ParameterError};
+use crate::errors::{parameter_error, InputError, ParameterError};
 use crate::spec::Spec;
 
 /// The largest number of Maxwell-slip elements the Python package accepts.
@@ -146,16 +146,23 @@ where
                 .enumerate()
                 .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)));
         }
+        // All or nothing across channels too: a channel that fails has already put its own
+        // state back (gms-core does), the others are put back from this copy.
+        let before = self.states.clone();
         let results: Vec<Result<(), Error>> = self
             .states
             .par_iter_mut()
             .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
             .map(run_one)
             .collect();
-        results
+        let outcome = results
             .into_iter()
             .enumerate()
-            .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)))
+            .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)));
+        if outcome.is_err() {
+            self.states = before;
+        }
+        outcome
     }
 
     fn reset(&mut self) {
@@ -191,17 +198,25 @@ where
     }
 }
 
-fn bank<H>(params: Params<H>, channels: usize, scheme: Scheme) -> Box<dyn Engine>
+fn bank<H>(params: Params<H>, channels: usize, scheme: Scheme) -> PyResult<Box<dyn Engine>>
 where
     H: Hysteresis + Send + Sync + 'static,
     H::Memory: Memory,
 {
-    let states = vec![params.relaxed_state(); channels];
-    Box::new(Bank {
+    // A channel count that does not fit in memory must be an error, not an abort.
+    let mut states = Vec::new();
+    states.try_reserve_exact(channels).map_err(|_| {
+        InputError::new_err(format!(
+            "`channels` = {channels} does not fit in memory ({} bytes of state each)",
+            core::mem::size_of::<State<H::Memory>>()
+        ))
+    })?;
+    states.resize(channels, params.relaxed_state());
+    Ok(Box::new(Bank {
         params,
         states,
         scheme,
-    })
+    }))
 }
 
 fn maxwell<const N: usize>(
@@ -216,22 +231,25 @@ fn maxwell<const N: usize>(
     let elements = MaxwellSlip::new(w, delta).map_err(|error| parameter_error(error, spec))?;
     let params = Params::new(spec.stribeck()?, spec.n, spec.sigma1, spec.sigma2, elements)
         .map_err(|error| parameter_error(error, spec))?;
-    Ok(bank(params, channels, scheme))
+    bank(params, channels, scheme)
 }
 
 /// Validates `spec` and returns `channels` relaxed channels of it.
 pub fn build(spec: &Spec, channels: usize, scheme: Scheme) -> PyResult<Box<dyn Engine>> {
     if let Some(sigma0) = spec.sigma0 {
-        if !spec.w.is_empty() || !spec.big_delta.is_empty() {
+        if spec.maxwell_given {
             return Err(ParameterError::new_err(
                 "give either `sigma0` (linear hysteresis) or `W` + `Delta` (Maxwell slip), got both",
             ));
         }
-        return Ok(bank(spec.lugre(sigma0)?, channels, scheme));
+        return bank(spec.lugre(sigma0)?, channels, scheme);
     }
     seq!(N in 1..=32 {
         match spec.w.len() {
             #(N => maxwell::<N>(spec, channels, scheme),)*
+            0 if spec.maxwell_given => Err(ParameterError::new_err(
+                "`W` and `Delta` need at least one element, got empty sequences",
+            )),
             0 => Err(ParameterError::new_err(
                 "give either `sigma0` (linear hysteresis) or `W` + `Delta` (Maxwell slip), got neither",
             )),

@@ -68,15 +68,25 @@ pub fn parameter_error(error: Error, spec: &Spec) -> PyErr {
     ParameterError::new_err(message)
 }
 
-/// An error of a step or a block run, with the value that broke the rule where there is one.
-pub fn run_error(error: Error, value: f64) -> PyErr {
+/// An error of a step or a block run, with the value that broke the rule where there is one,
+/// and the channel where the model has several.
+pub fn run_error(error: Error, value: f64, channel: Option<usize>) -> PyErr {
+    let at = |index: usize| match channel {
+        Some(channel) => format!("channel {channel}, sample {index}"),
+        None => format!("sample {index}"),
+    };
     match error {
-        Error::Diverged { .. } => DivergenceError::new_err(error.to_string()),
+        Error::Diverged { index } => DivergenceError::new_err(format!(
+            "the explicit step diverged at {}: dt is too large for the stiffness; use the \
+             implicit scheme",
+            at(index)
+        )),
         Error::NotPositive(Field::dt) => {
             InputError::new_err(format!("`dt` must be finite and > 0, got {value}"))
         }
         Error::NotFinite { field, index } => InputError::new_err(format!(
-            "`{field}` must be finite, got {value} at sample {index}"
+            "`{field}` must be finite, got {value} at {}",
+            at(index)
         )),
         other => InputError::new_err(other.to_string()),
     }

@@ -6,10 +6,62 @@ use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat};
 
 use crate::engine::{build, Engine as Channels};
 use crate::errors::{run_error, InputError};
 use crate::spec::Spec;
+
+/// A Python real number as f64: floats on the fast path, then ints and numpy scalars; bools
+/// and everything else are refused.
+#[inline]
+fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    if let Ok(float) = value.cast::<PyFloat>() {
+        return Ok(float.value());
+    }
+    if !value.is_instance_of::<PyBool>() {
+        if let Ok(number) = value.extract::<f64>() {
+            return Ok(number);
+        }
+    }
+    Err(InputError::new_err(format!(
+        "`{name}` must be a real number, got {}",
+        value.repr()?
+    )))
+}
+
+/// The error of a single step: the value shown is the offending input or dt.
+fn step_error(error: gms_core::Error, input: f64, dt: f64) -> PyErr {
+    let value = match error {
+        gms_core::Error::NotPositive(_) => dt,
+        // A finite position can still give an infinite velocity over a tiny dt.
+        _ if input.is_finite() => f64::INFINITY,
+        _ => input,
+    };
+    run_error(error, value, None)
+}
+
+/// The error of a block call; `row` is the channel's input, or the (B,) samples of one step
+/// with `offset` channels before it.
+fn block_error(
+    error: gms_core::Error,
+    row: &[f64],
+    offset: usize,
+    channel: Option<usize>,
+) -> PyErr {
+    let value = match error {
+        gms_core::Error::NotFinite { index, .. } => {
+            let sample = row.get(index + offset).copied().unwrap_or(f64::NAN);
+            if sample.is_finite() {
+                f64::INFINITY
+            } else {
+                sample
+            }
+        }
+        _ => f64::NAN,
+    };
+    run_error(error, value, channel)
+}
 
 fn parse_scheme(scheme: &str) -> PyResult<Scheme> {
     match scheme {
@@ -62,14 +114,27 @@ impl Engine {
 #[pymethods]
 impl Engine {
     #[new]
-    #[pyo3(signature = (params, channels = 1, scheme = "implicit"))]
-    fn new(params: &Bound<'_, PyAny>, channels: i64, scheme: &str) -> PyResult<Self> {
+    #[pyo3(signature = (params, channels = 1, scheme = None))]
+    fn new(
+        params: &Bound<'_, PyAny>,
+        channels: i64,
+        scheme: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         if channels < 1 {
             return Err(InputError::new_err(format!(
                 "`channels` must be >= 1, got {channels}"
             )));
         }
-        let scheme = parse_scheme(scheme)?;
+        let scheme = match scheme.map(|scheme| (scheme, scheme.extract::<String>())) {
+            None => Scheme::Implicit,
+            Some((_, Ok(name))) => parse_scheme(&name)?,
+            Some((scheme, Err(_))) => {
+                return Err(InputError::new_err(format!(
+                    "`scheme` must be 'implicit' or 'explicit', got {}",
+                    scheme.repr()?
+                )))
+            }
+        };
         let spec = Spec::extract(params)?;
         let channels = build(&spec, channels as usize, scheme)?;
         Ok(Self {
@@ -106,19 +171,21 @@ impl Engine {
     }
 
     /// One step of a single-channel model with velocity `v` held over `dt`; returns the force.
-    fn step(&mut self, v: f64, dt: f64) -> PyResult<f64> {
+    fn step(&mut self, v: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
         self.single_channel("step")?;
+        let (v, dt) = (real(v, "v")?, real(dt, "dt")?);
         self.channels
             .step(0, v, dt, false)
-            .map_err(|error| run_error(error, if dt > 0.0 { v } else { dt }))
+            .map_err(|error| step_error(error, v, dt))
     }
 
     /// One step of a single-channel model with position input `x`; returns the force.
-    fn step_position(&mut self, x: f64, dt: f64) -> PyResult<f64> {
+    fn step_position(&mut self, x: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
         self.single_channel("step_position")?;
+        let (x, dt) = (real(x, "x")?, real(dt, "dt")?);
         self.channels
             .step(0, x, dt, true)
-            .map_err(|error| run_error(error, if dt > 0.0 { x } else { dt }))
+            .map_err(|error| step_error(error, x, dt))
     }
 
     /// Steps every channel once; `input` has shape (B,), already float64 and finite.
@@ -134,7 +201,7 @@ impl Engine {
         let mut out = vec![0.0; input.len()];
         self.channels
             .run(input, dt, position, &mut out)
-            .map_err(|(channel, error)| run_error(error, input[channel]))?;
+            .map_err(|(channel, error)| block_error(error, input, channel, Some(channel)))?;
         Ok(PyArray1::from_vec(py, out))
     }
 
@@ -158,13 +225,11 @@ impl Engine {
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
         let channels = &mut self.channels;
+        let multiple = shape[0] > 1;
         py.detach(|| channels.run(input, dt, position, &mut out))
             .map_err(|(channel, error)| {
-                let index = match error {
-                    gms_core::Error::NotFinite { index, .. } => index,
-                    _ => 0,
-                };
-                run_error(error, input[channel * shape[1] + index])
+                let channel = multiple.then_some(channel);
+                block_error(error, &input[channel.unwrap_or(0) * shape[1]..], 0, channel)
             })?;
         PyArray1::from_vec(py, out).reshape(shape)
     }

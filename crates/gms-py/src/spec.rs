@@ -21,6 +21,8 @@ pub struct Spec {
     pub sigma0: Option<f64>,
     pub w: Vec<f64>,
     pub big_delta: Vec<f64>,
+    /// Whether `W` or `Delta` was given at all (possibly empty).
+    pub maxwell_given: bool,
 }
 
 impl Spec {
@@ -64,6 +66,7 @@ impl Spec {
             sigma0: optional("sigma0")?,
             w: list("W")?,
             big_delta: list("Delta")?,
+            maxwell_given: !(params.getattr("W")?.is_none() && params.getattr("Delta")?.is_none()),
         };
         if spec.sigma0.is_none() && spec.w.len() != spec.big_delta.len() {
             return Err(ParameterError::new_err(format!(

@@ -9,6 +9,19 @@
 use gms_core::{Error, Hysteresis, LeuvenParams, MaxwellSlip, Params, Scheme, State, Stribeck};
 use proptest::array::uniform;
 use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
+
+/// The proptest configuration of every property: `cases` cases, and failures saved beside the
+/// test file (`tests/<name>.proptest-regressions`). The default looks for a `lib.rs` above the
+/// test file, finds none for an integration test, and warns on every run.
+pub fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
+            "proptest-regressions",
+        ))),
+        ..ProptestConfig::with_cases(cases)
+    }
+}
 
 /// Values spread evenly over the decades of `[lo, hi]` (both > 0): models, inputs and steps span
 /// many orders of magnitude, and a uniform draw would almost never visit the small end.
@@ -68,6 +81,17 @@ pub fn asymmetric_stribeck() -> impl Strategy<Value = Stribeck> + Clone {
                 .expect("the strategy only builds valid curves")
         },
     )
+}
+
+/// g(v) as DESIGN.md §2 writes it, Fc + (Fs − Fc)·exp(−|v/Vs|^δ) with the `_neg` levels for
+/// v < 0, computed here from the curve's parameters: an oracle independent of `Stribeck::g`.
+pub fn stribeck_level(curve: &Stribeck, v: f64) -> f64 {
+    let (fc, fs) = if v < 0.0 {
+        (curve.fc_neg(), curve.fs_neg())
+    } else {
+        (curve.fc(), curve.fs())
+    };
+    fc + (fs - fc) * (-(v / curve.vs()).abs().powf(curve.delta())).exp()
 }
 
 /// Saturation forces proportional to `weights`, scaled so that they add up to `strength` times

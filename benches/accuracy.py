@@ -1,0 +1,20 @@
+"""Prints the explicit-vs-implicit accuracy tables: ``python benches/accuracy.py``.
+
+The numbers come from :func:`leuven_rt.accuracy.report`; the README quotes this output.
+"""
+
+from __future__ import annotations
+
+import time
+
+from leuven_rt.accuracy import report
+
+
+def main() -> None:
+    start = time.perf_counter()
+    print(report())
+    print(f"\n({time.perf_counter() - start:.2f} s)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,233 @@
+//! Every parameter rule of DESIGN.md §2 is enforced at construction, with the `Error` variant
+//! that names the offending key, and valid values on the edge of each rule are accepted:
+//!
+//! | rule | constructor | error |
+//! |---|---|---|
+//! | `Fc`, `Fs`, `Vs`, `delta`, `Fc_neg`, `Fs_neg` finite and > 0 | `Stribeck::new/asymmetric` | `NotPositive(field)` |
+//! | `Fs ≥ Fc`, `Fs_neg ≥ Fc_neg` | `Stribeck::new/asymmetric` | `StaticBelowCoulomb(field)` |
+//! | each `W[i]`, `Delta[i]` finite and > 0 (and W/Δ finite) | `MaxwellSlip::new` | `Element { field, index }` |
+//! | at least one element | `MaxwellSlip::new` | `NoElements` |
+//! | `sigma0` finite and > 0 | `Linear::new` | `NotPositive(sigma0)` |
+//! | `n` finite and > 0 | `Params::new` | `NotPositive(n)` |
+//! | `sigma1`, `sigma2` finite and ≥ 0 | `Params::new` | `Negative(field)` |
+//! | `sum(W) > max(Fs, Fs_neg)` | `Params::new` | `ElementsTooWeak` |
+//!
+//! and every message names its key.
+
+mod common;
+
+use common::{log_uniform, saturation_forces, stribeck};
+use gms_core::{Error, Field, Linear, MaxwellSlip, Params, Stribeck};
+use proptest::array::uniform;
+use proptest::prelude::*;
+
+/// Values that break "finite and > 0".
+const NOT_POSITIVE: [f64; 6] = [0.0, -0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+/// Values that break "finite and ≥ 0".
+const NEGATIVE: [f64; 5] = [-1e-300, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+
+const FIELDS: [Field; 15] = [
+    Field::Fc,
+    Field::Fs,
+    Field::Vs,
+    Field::delta,
+    Field::n,
+    Field::sigma0,
+    Field::sigma1,
+    Field::sigma2,
+    Field::W,
+    Field::Delta,
+    Field::Fc_neg,
+    Field::Fs_neg,
+    Field::dt,
+    Field::v,
+    Field::x,
+];
+
+fn curve() -> Stribeck {
+    Stribeck::asymmetric(1.0, 1.5, 0.8, 1.2, 1e-3, 2.0).expect("valid curve")
+}
+
+fn elements() -> MaxwellSlip<2> {
+    MaxwellSlip::new([1.0, 1.0], [1e-6, 2e-6]).expect("valid elements")
+}
+
+#[test]
+fn stribeck_levels_must_be_positive() {
+    for bad in NOT_POSITIVE {
+        let cases = [
+            (Stribeck::new(bad, 1.5, 1e-3, 2.0), Field::Fc),
+            (Stribeck::new(1.0, bad, 1e-3, 2.0), Field::Fs),
+            (Stribeck::new(1.0, 1.5, bad, 2.0), Field::Vs),
+            (Stribeck::new(1.0, 1.5, 1e-3, bad), Field::delta),
+            (
+                Stribeck::asymmetric(1.0, 1.5, bad, 1.2, 1e-3, 2.0),
+                Field::Fc_neg,
+            ),
+            (
+                Stribeck::asymmetric(1.0, 1.5, 0.8, bad, 1e-3, 2.0),
+                Field::Fs_neg,
+            ),
+        ];
+        for (result, field) in cases {
+            assert_eq!(result, Err(Error::NotPositive(field)), "{field} = {bad}");
+        }
+    }
+}
+
+#[test]
+fn static_levels_must_not_be_below_coulomb() {
+    let below = 1.0 - f64::EPSILON;
+    assert_eq!(
+        Stribeck::new(1.0, below, 1e-3, 2.0),
+        Err(Error::StaticBelowCoulomb(Field::Fs))
+    );
+    assert_eq!(
+        Stribeck::asymmetric(1.0, 1.5, 1.0, below, 1e-3, 2.0),
+        Err(Error::StaticBelowCoulomb(Field::Fs_neg))
+    );
+    // Equality is allowed: no Stribeck bump.
+    let flat = Stribeck::asymmetric(1.0, 1.0, 0.5, 0.5, 1e-3, 2.0).expect("Fs = Fc is valid");
+    assert_eq!((flat.g(1e-9), flat.g(-1e-9)), (1.0, 0.5));
+}
+
+#[test]
+fn elements_must_be_positive_and_present() {
+    for bad in NOT_POSITIVE {
+        for index in 0..3 {
+            let mut w = [1.0; 3];
+            w[index] = bad;
+            assert_eq!(
+                MaxwellSlip::new(w, [1e-6; 3]),
+                Err(Error::Element {
+                    field: Field::W,
+                    index
+                }),
+                "W[{index}] = {bad}"
+            );
+            let mut delta = [1e-6; 3];
+            delta[index] = bad;
+            assert_eq!(
+                MaxwellSlip::new([1.0; 3], delta),
+                Err(Error::Element {
+                    field: Field::Delta,
+                    index
+                }),
+                "Delta[{index}] = {bad}"
+            );
+        }
+    }
+    // A break deflection so small that the stiffness W/Δ overflows is not a spring either.
+    assert_eq!(
+        MaxwellSlip::new([1.0, 2.0], [1e-6, 1e-310]),
+        Err(Error::Element {
+            field: Field::Delta,
+            index: 1
+        })
+    );
+    assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));
+}
+
+#[test]
+fn linear_stiffness_must_be_positive() {
+    for bad in NOT_POSITIVE {
+        assert_eq!(
+            Linear::new(bad),
+            Err(Error::NotPositive(Field::sigma0)),
+            "sigma0 = {bad}"
+        );
+    }
+}
+
+#[test]
+fn model_coefficients_follow_their_rules() {
+    for bad in NOT_POSITIVE {
+        assert_eq!(
+            Params::new(curve(), bad, 1.0, 1.0, elements()),
+            Err(Error::NotPositive(Field::n))
+        );
+    }
+    for bad in NEGATIVE {
+        assert_eq!(
+            Params::new(curve(), 1.0, bad, 1.0, elements()),
+            Err(Error::Negative(Field::sigma1)),
+            "sigma1 = {bad}"
+        );
+        assert_eq!(
+            Params::new(curve(), 1.0, 1.0, bad, elements()),
+            Err(Error::Negative(Field::sigma2)),
+            "sigma2 = {bad}"
+        );
+    }
+    // Zero damping is allowed (Dahl-like), and so is negative zero.
+    for zero in [0.0, -0.0] {
+        assert!(Params::new(curve(), 1.0, zero, zero, elements()).is_ok());
+    }
+}
+
+proptest! {
+    #![proptest_config(common::config(128))]
+
+    /// sum(W) must exceed the larger static level, whichever direction it belongs to.
+    #[test]
+    fn elements_must_balance_the_stribeck_curve(
+        stribeck in stribeck(),
+        weights in uniform::<_, 5>(0.05..1.0f64),
+        delta in uniform::<_, 5>(log_uniform(1e-7, 1e-4)),
+        (weak, strong) in (0.05..0.999f64, 1.001..5.0f64),
+    ) {
+        let peak = stribeck.fs().max(stribeck.fs_neg());
+        let too_weak = MaxwellSlip::new(saturation_forces(weights, peak, weak), delta).expect("valid elements");
+        prop_assert_eq!(Params::new(stribeck, 1.0, 1.0, 1.0, too_weak), Err(Error::ElementsTooWeak));
+        let strong_enough = MaxwellSlip::new(saturation_forces(weights, peak, strong), delta).expect("valid elements");
+        prop_assert!(Params::new(stribeck, 1.0, 1.0, 1.0, strong_enough).is_ok());
+        // A linear spring has no saturation: never too weak.
+        prop_assert!(Params::new(stribeck, 1.0, 1.0, 1.0, Linear::new(1e5).expect("valid")).is_ok());
+    }
+}
+
+#[test]
+fn elements_exactly_at_the_static_level_are_too_weak() {
+    // sum(W) = 1.5 = Fs exactly, and sum(W) = 1.2 = Fs_neg < Fs with Fs_neg the larger level.
+    let at_fs = MaxwellSlip::new([1.0, 0.5], [1e-6, 2e-6]).expect("valid elements");
+    assert_eq!(
+        Params::new(curve(), 1.0, 0.0, 0.0, at_fs),
+        Err(Error::ElementsTooWeak)
+    );
+    let reversed = Stribeck::asymmetric(0.8, 1.2, 1.0, 1.5, 1e-3, 2.0).expect("valid curve");
+    assert_eq!(
+        Params::new(reversed, 1.0, 0.0, 0.0, at_fs),
+        Err(Error::ElementsTooWeak)
+    );
+    let above = MaxwellSlip::new([1.0, 0.5 + 1e-12], [1e-6, 2e-6]).expect("valid elements");
+    assert!(Params::new(reversed, 1.0, 0.0, 0.0, above).is_ok());
+}
+
+#[test]
+fn messages_name_the_key() {
+    for field in FIELDS {
+        let key = field.key();
+        assert_eq!(field.to_string(), key);
+        let errors = [
+            Error::NotPositive(field),
+            Error::Negative(field),
+            Error::StaticBelowCoulomb(field),
+            Error::Element { field, index: 3 },
+            Error::NotFinite { field, index: 3 },
+        ];
+        for error in errors {
+            let message = error.to_string();
+            assert!(
+                message.contains(&format!("`{key}")),
+                "{error:?} displays as {message:?}"
+            );
+        }
+    }
+}
+
+/// The error is a small value: `Copy`, comparable, and a `core::error::Error`.
+#[test]
+fn errors_are_plain_values() {
+    fn plain<T: Copy + PartialEq + core::error::Error>() {}
+    plain::<Error>();
+}
