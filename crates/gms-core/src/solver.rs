@@ -20,8 +20,9 @@ use crate::hysteresis::{Hysteresis, Trial};
 use crate::math::abs_pow;
 
 /// Upper bound on the scalar Newton/bisection iterations on one linear piece (used only when
-/// n ∉ {1, 2}); bisection alone shrinks the piece to four ulps in at most 55.
-pub const MAX_ITERATIONS: u32 = 64;
+/// n ∉ {1, 2}). The bracket at least halves every two iterations, and 55 halvings shrink any
+/// piece to four ulps, so the bound is never the reason the iteration stops.
+pub const MAX_ITERATIONS: u32 = 128;
 
 /// The committed deflection of an implicit step and how many evaluations of Fh it took.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -137,15 +138,18 @@ impl<H: Hysteresis> Residual<'_, H> {
         let beta = slope * self.inverse_g;
         let c = self.dt_abs_v;
         let s_end = end - y;
+        // R(y + s) = s + q + c·φ(α + β·s). Written with q, not r − c·φ(α): when c·φ(α) is huge
+        // (a reversal from fast sliding) that difference would cancel catastrophically.
+        let q = (y - self.z) - self.dt_v;
         let s = if beta == 0.0 {
             // Every element saturated: φ is constant and R has slope 1.
             -r
         } else if self.n == 1.0 {
             -r / (1.0 + c * beta)
         } else if self.n == 2.0 {
-            quadratic_root(r, alpha, beta, c)
+            quadratic_root(r, q, alpha, beta, c)
         } else {
-            match self.newton_on_piece(r, alpha, beta, s_end) {
+            match self.newton_on_piece(r, q, alpha, beta, s_end) {
                 Some(s) => s,
                 None => return OnPiece::Beyond(end),
             }
@@ -157,12 +161,16 @@ impl<H: Hysteresis> Residual<'_, H> {
         OnPiece::Root((y + s).clamp(lo, hi))
     }
 
-    /// Root of P(s) = s + r + c·(φ(α + β·s) − φ(α)) between 0 and `s_end`, for any n > 0; `None`
-    /// if P keeps the sign of r over the whole interval (the root lies beyond the piece).
-    fn newton_on_piece(&self, r: f64, alpha: f64, beta: f64, s_end: f64) -> Option<f64> {
+    /// Root of P(s) = s + q + c·φ(α + β·s) (P(0) = r) between 0 and `s_end`, for any n > 0;
+    /// `None` if P keeps the sign of r over the whole interval (the root lies beyond the piece).
+    ///
+    /// Newton inside a bracket, with two safeguards: a Newton step that leaves the bracket is
+    /// replaced by a bisection, and so is every second step when the bracket has not halved over
+    /// the last two (far from the root, Newton on |u|ⁿ gains only a factor (n − 1)/n per step).
+    /// The bracket therefore halves at least every two steps, which bounds the iterations.
+    fn newton_on_piece(&self, r: f64, q: f64, alpha: f64, beta: f64, s_end: f64) -> Option<f64> {
         let (n, c) = (self.n, self.dt_abs_v);
-        let phi_alpha = phi(alpha, n);
-        let p = |s: f64| s + r + c * (phi(alpha + beta * s, n) - phi_alpha);
+        let p = |s: f64| (s + q) + c * phi(alpha + beta * s, n);
         let p_end = p(s_end);
         if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
             return None;
@@ -170,13 +178,14 @@ impl<H: Hysteresis> Residual<'_, H> {
         // Bracket [a, b] in s with P(a) < 0 < P(b).
         let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
         let tolerance = 4.0 * f64::EPSILON * (libm::fabs(self.z) + libm::fabs(s_end));
-        let mut s = 0.0;
-        let mut value = r;
-        let mut previous = f64::INFINITY;
-        for _ in 0..MAX_ITERATIONS {
+        let (mut s, mut value) = (0.0, r);
+        let mut checkpoint = b - a;
+        for iteration in 0..MAX_ITERATIONS {
+            if b - a <= tolerance {
+                break;
+            }
             let u = alpha + beta * s;
-            let power = abs_pow(u, n);
-            // dφ/du = n·|u|ⁿ⁻¹, infinite at u = 0 when n < 1: then bisect.
+            // dφ/du = n·|u|ⁿ⁻¹, infinite at u = 0 when n < 1: no Newton step there.
             let slope = if u == 0.0 {
                 if n > 1.0 {
                     1.0
@@ -184,43 +193,32 @@ impl<H: Hysteresis> Residual<'_, H> {
                     f64::INFINITY
                 }
             } else {
-                1.0 + c * beta * n * power / libm::fabs(u)
+                1.0 + c * beta * n * abs_pow(u, n) / libm::fabs(u)
             };
             let newton = s - value / slope;
-            let inside = newton > a && newton < b;
-            let next = if inside && 2.0 * libm::fabs(value) <= previous {
-                newton
-            } else {
-                0.5 * (a + b)
-            };
-            if b - a <= tolerance {
-                return Some(next.clamp(a, b));
-            }
-            if libm::fabs(next - s) <= tolerance {
-                // A tiny step is not proof of a root where the slope is huge (n < 1 near u = 0):
-                // accept only if P changes sign within the tolerance around the candidate.
-                let (below, above) = (next - tolerance, next + tolerance);
+            if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
+                // A tiny step is not proof of a root where the slope is huge: accept it only
+                // if P changes sign within the tolerance around it.
+                let (below, above) = (newton - tolerance, newton + tolerance);
                 let (p_below, p_above) = (p(below), p(above));
                 if p_below <= 0.0 && p_above >= 0.0 {
-                    return Some(next.clamp(a, b));
+                    return Some(newton.clamp(a, b));
                 }
                 if p_below > 0.0 {
                     b = b.min(below);
                 } else {
                     a = a.max(above);
                 }
-                previous = f64::INFINITY;
-                s = 0.5 * (a + b);
-                value = p(s);
-                if value < 0.0 {
-                    a = s;
-                } else {
-                    b = s;
-                }
-                continue;
             }
-            previous = libm::fabs(value);
-            s = next;
+            let stalled = iteration % 2 == 1 && b - a > 0.5 * checkpoint;
+            if iteration % 2 == 1 {
+                checkpoint = b - a;
+            }
+            s = if slope.is_finite() && newton > a && newton < b && !stalled {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
             value = p(s);
             if value == 0.0 {
                 return Some(s);
@@ -235,15 +233,16 @@ impl<H: Hysteresis> Residual<'_, H> {
     }
 }
 
-/// Root of P(s) = s + r + c·(φ(α + β·s) − φ(α)) for n = 2 (φ(u) = u·|u|), β > 0, c ≥ 0.
+/// Root of P(s) = s + q + c·φ(α + β·s) for n = 2 (φ(u) = u·|u|), β > 0, c ≥ 0, where
+/// r = P(0) = q + c·φ(α).
 ///
 /// P is a quadratic on each side of the zero of u; the side is the one where P changes sign.
 /// The root is written in the form that does not cancel when c·β is small.
 #[inline]
-fn quadratic_root(r: f64, alpha: f64, beta: f64, c: f64) -> f64 {
+fn quadratic_root(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f64 {
     let s_zero = -alpha / beta;
     // P at the zero of u; the root lies right of it (u > 0) iff P(s_zero) ≤ 0.
-    let p_zero = s_zero + r - c * phi(alpha, 2.0);
+    let p_zero = s_zero + q;
     let sigma = if p_zero <= 0.0 { 1.0 } else { -1.0 };
     if sigma * alpha >= 0.0 {
         // Same side as s = 0: σ·c·β²·s² + (1 + 2c·|α|·β)·s + r = 0.

@@ -3,8 +3,9 @@
 //!
 //! - After every step of either scheme, for N = 1, 4, 10, 32, random valid parameters, random
 //!   time steps and velocity sequences with reversals, plateaus and exact zeros: each element
-//!   either kept its ζᵢ or slipped to exactly z ∓ Δᵢ, and |eᵢ| = |z − ζᵢ| ≤ Δᵢ.
-//! - the hysteresis map around reachable memories: `trial` is non-decreasing in z and linear
+//!   either kept its ζᵢ or slipped to exactly z ∓ Δᵢ, and |eᵢ| = |z − ζᵢ| ≤ Δᵢ (up to the
+//!   rounding of z ∓ Δᵢ, which can put a slipped element one ulp beyond its break).
+//! - The hysteresis map around reachable memories: `trial` is non-decreasing in z and linear
 //!   up to the breakpoints it reports (the implicit solver walks those pieces), `force` and
 //!   `commit` return the trial force, and committing at z does not change Fh(z) (no force jump
 //!   when elements slip).

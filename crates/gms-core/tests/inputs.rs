@@ -8,7 +8,8 @@
 //! - a block run split into two chunks equals one run, and one `Params` driving two channels
 //!   equals two copies driving one each, bitwise (no hidden state in the parameters);
 //! - a diverging explicit step (stiff linear spring, large dt) is an `Error::Diverged` at the
-//!   right sample, not a panic, and leaves the finite state of the samples before it.
+//!   right sample, not a panic; block calls are all or nothing, so the state is left finite, as
+//!   it was before the call.
 
 mod common;
 
@@ -223,13 +224,13 @@ proptest! {
             });
 
             prop_assert_eq!(whole_result, chunked_result);
-            prop_assert_eq!(bits(&whole), bits(&chunked));
-            let valid = match whole_result {
-                Err(Error::Diverged { index }) => index,
-                _ => input.len(),
-            };
-            let to_bits = |out: &[f64]| out[..valid].iter().map(|f| f.to_bits()).collect::<Vec<_>>();
-            prop_assert_eq!(to_bits(&whole_out), to_bits(&chunked_out));
+            // After a divergence, a block call rolls back only its own samples: the states of
+            // one call and of two differ, by design.
+            if whole_result.is_ok() {
+                prop_assert_eq!(bits(&whole), bits(&chunked));
+                let to_bits = |out: &[f64]| out.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+                prop_assert_eq!(to_bits(&whole_out), to_bits(&chunked_out));
+            }
         }
     }
 
@@ -264,8 +265,8 @@ proptest! {
         }
     }
 
-    /// A stiff spring with a large explicit step diverges: reported at the right sample, with
-    /// the state and forces of the samples before it intact and finite.
+    /// A stiff spring with a large explicit step diverges: reported at the first sample whose
+    /// step diverges, with the state as it was before the call.
     #[test]
     fn explicit_divergence_is_reported(
         stribeck in stribeck(),
@@ -283,19 +284,17 @@ proptest! {
             return Err(TestCaseError::fail(format!("no divergence: {result:?}")));
         };
         prop_assert!(index > 0 && index < input.len());
-        prop_assert!(state.z.is_finite());
-        prop_assert!(out[..index].iter().all(|f| f.is_finite()));
+        prop_assert_eq!(state.z.to_bits(), params.relaxed_state().z.to_bits());
 
-        // The state is that of the first `index` samples, and stepping on from it diverges again
-        // without touching it.
+        // `index` is right: the samples before it run, and a single step from there diverges,
+        // reported and without touching the (finite) state.
         let mut replay = params.relaxed_state();
         let mut replay_out = vec![0.0; index];
         prop_assert_eq!(params.simulate(&mut replay, &input[..index], dt, Scheme::Explicit, &mut replay_out), Ok(()));
-        prop_assert_eq!(replay.z.to_bits(), state.z.to_bits());
-        prop_assert_eq!(&replay_out[..], &out[..index]);
-        let before = state;
-        prop_assert_eq!(params.step(&mut state, v, dt, Scheme::Explicit), Err(Error::Diverged { index: 0 }));
-        prop_assert_eq!(state.z.to_bits(), before.z.to_bits());
+        prop_assert!(replay.z.is_finite() && replay_out.iter().all(|f| f.is_finite()));
+        let before = replay;
+        prop_assert_eq!(params.step(&mut replay, v, dt, Scheme::Explicit), Err(Error::Diverged { index: 0 }));
+        prop_assert_eq!(replay.z.to_bits(), before.z.to_bits());
 
         // The implicit scheme takes the same input in its stride.
         let mut implicit = params.relaxed_state();
@@ -305,7 +304,7 @@ proptest! {
 }
 
 /// Differencing two finite positions can overflow: that is a non-finite velocity, reported as
-/// such, and a single step leaves the state untouched.
+/// such, and the state is left untouched.
 #[test]
 fn overflowing_position_difference_is_reported() {
     let stribeck = gms_core::Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
@@ -326,10 +325,11 @@ fn overflowing_position_difference_is_reported() {
     );
     assert_eq!(bits(&state), before);
 
+    let mut fresh = params.relaxed_state();
     let mut out = [0.0; 2];
     assert_eq!(
         params.simulate_position(
-            &mut params.relaxed_state(),
+            &mut fresh,
             &[-f64::MAX, f64::MAX],
             1e-3,
             Scheme::Implicit,
@@ -340,4 +340,5 @@ fn overflowing_position_difference_is_reported() {
             index: 1
         })
     );
+    assert_eq!(bits(&fresh), bits(&params.relaxed_state()));
 }
