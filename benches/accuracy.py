@@ -1,18 +1,19 @@
 """Prints the explicit-vs-implicit accuracy tables: ``python benches/accuracy.py``.
 
-The numbers come from :func:`leuven_rt.accuracy.report`; the README quotes this output.
+The numbers come from :func:`leuven_rt.accuracy.full_report` (velocity- and force-driven);
+the README quotes this output.
 """
 
 from __future__ import annotations
 
 import time
 
-from leuven_rt.accuracy import report
+from leuven_rt.accuracy import full_report
 
 
 def main() -> None:
     start = time.perf_counter()
-    print(report())
+    print(full_report())
     print(f"\n({time.perf_counter() - start:.2f} s)")
 
 

@@ -3,26 +3,44 @@
 - :class:`Params`: a validated parameter set (DESIGN.md §2 keys).
 - :func:`simulate`, :func:`simulate_position`: run velocity or position signals, (T,) or (B, T).
 - :class:`LeuvenModel`: stateful channels stepped sample by sample, with checkpoints.
+- :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
+- :class:`MassSystem`, :func:`simulate_mass`: a mass on the friction model driven by a force.
+- :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
+- :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
 - :mod:`leuven_rt.reference`: the same discrete step in plain numpy, written as the specification.
 """
 
 from . import reference
 from ._core import MAX_ELEMENTS, MAX_ITERATIONS
+from .compensation import Compensator
 from .errors import DivergenceError, InputError, ParameterError
+from .identification import DataError, IdentificationResult, MotionData, identify
+from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
 from .model import LeuvenModel, ModelState
+from .online import OnlineIdentifier
 from .params import Params
 from .simulation import simulate, simulate_position
 
 __all__ = [
     "MAX_ELEMENTS",
     "MAX_ITERATIONS",
+    "Compensator",
+    "DataError",
     "DivergenceError",
+    "IdentificationResult",
     "InputError",
     "LeuvenModel",
+    "MassState",
+    "MassSystem",
+    "MassTrajectory",
     "ModelState",
+    "OnlineIdentifier",
+    "MotionData",
     "ParameterError",
     "Params",
+    "identify",
     "reference",
     "simulate",
+    "simulate_mass",
     "simulate_position",
 ]

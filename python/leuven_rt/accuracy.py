@@ -197,3 +197,137 @@ def report(
                 "(stable < 2)"
             )
     return "\n".join(lines)
+
+
+# --- Force-driven case: the same friction under a mass (leuven_rt.simulate_mass) -----------------
+
+#: The force-driven scenario: a free 1 kg mass on the LuGre-like friction, pushed by
+#: u(t) = 2 N · sin(2π·5 Hz·t) from rest for 1 s. It sticks near every reversal of u and slides
+#: at up to about 30 mm/s in between, so both regimes and their transitions are in the error.
+MASS = 1.0
+FORCE_AMPLITUDE = 2.0
+
+
+@dataclass(frozen=True)
+class MassAccuracyRow:
+    """The error of one scheme at one sample rate in the force-driven case."""
+
+    rate_hz: float
+    scheme: str
+    rms_error: float
+    """RMS of the friction force error [N]; ``inf`` if the scheme diverged."""
+    rms_error_relative_to_Fs: float
+    max_error: float
+    """Largest absolute friction force error [N]; ``inf`` if the scheme diverged."""
+    rms_position_error: float
+    """RMS of the position error [m]; ``inf`` if the scheme diverged."""
+
+    @property
+    def diverged(self) -> bool:
+        return math.isinf(self.rms_error)
+
+
+def applied_force(times: NDArray[np.float64], amplitude: float = FORCE_AMPLITUDE) -> NDArray[np.float64]:
+    """The applied force u(t) [N] at ``times`` [s]."""
+    return amplitude * np.sin(2.0 * np.pi * FREQUENCY * times)
+
+
+def _rms(error: NDArray[np.float64]) -> tuple[float, float]:
+    """(RMS, max) of ``error``, scaled against overflow; (inf, inf) if not finite."""
+    largest = float(np.max(np.abs(error)))
+    if not math.isfinite(largest):
+        return math.inf, math.inf
+    return (largest * float(np.sqrt(np.mean((error / largest) ** 2))) if largest > 0 else 0.0), largest
+
+
+def force_accuracy(
+    rates: Sequence[float] = (100.0, 1000.0, 10000.0),
+    refine: int = 100,
+    duration: float = 1.0,
+    params: Params = LUGRE,
+    mass: float = MASS,
+    amplitude: float = FORCE_AMPLITUDE,
+) -> list[MassAccuracyRow]:
+    """Friction force and position error of each scheme at each rate in the force-driven case,
+    against the implicit mass step at ``refine``× the rate, compared at the end of every coarse
+    step. Same conventions as :func:`step_accuracy`."""
+    from .mechanics import simulate_mass  # the mechanics import the package's errors
+
+    if isinstance(refine, bool) or not isinstance(refine, int) or refine < 2:
+        raise ValueError(f"`refine` must be an integer >= 2, got {refine!r}")
+    rows: list[MassAccuracyRow] = []
+    for rate in rates:
+        rate = float(rate)
+        count = _samples(rate, duration)
+        dt = 1.0 / rate
+        fine = simulate_mass(params, applied_force(np.arange(count * refine) / (rate * refine), amplitude),
+                             dt / refine, mass=mass)  # fmt: skip
+        truth_force, truth_position = fine.friction[refine - 1 :: refine], fine.position[refine - 1 :: refine]
+        coarse_u = applied_force(np.arange(count) / rate, amplitude)
+        for scheme in SCHEMES:
+            try:
+                run = simulate_mass(params, coarse_u, dt, mass=mass, scheme=scheme)
+            except DivergenceError:
+                rows.append(MassAccuracyRow(rate, scheme, math.inf, math.inf, math.inf, math.inf))
+                continue
+            with np.errstate(over="ignore", invalid="ignore"):
+                force_error, position_error = run.friction - truth_force, run.position - truth_position
+            rms, largest = _rms(force_error)
+            rms_position, _ = _rms(position_error)
+            if math.isinf(rms) or math.isinf(rms_position):
+                rms = largest = rms_position = math.inf
+            rows.append(MassAccuracyRow(rate, scheme, rms, rms / params.Fs, largest, rms_position))
+    return rows
+
+
+def simulate_mass_velocity(rate: float, params: Params = LUGRE) -> NDArray[np.float64]:
+    """The velocity of the force-driven scenario, implicit at ``rate`` Hz."""
+    from .mechanics import simulate_mass
+
+    count = _samples(rate, 1.0)
+    return simulate_mass(params, applied_force(np.arange(count) / rate), 1.0 / rate, mass=MASS).velocity
+
+
+def format_force_table(rows: Sequence[MassAccuracyRow]) -> str:
+    """The force-driven rows as a markdown table."""
+    lines = [
+        "| rate [Hz] | scheme | RMS force error [N] | RMS force error [% of Fs] | max force error [N] "
+        "| RMS position error [m] |",
+        "|---:|---|---:|---:|---:|---:|",
+    ]
+    for row in rows:
+        relative = "diverged" if row.diverged else f"{100.0 * row.rms_error_relative_to_Fs:.3g} %"
+        lines.append(
+            f"| {row.rate_hz:g} | {row.scheme} | {_number(row.rms_error)} | {relative} "
+            f"| {_number(row.max_error)} | {_number(row.rms_position_error)} |"
+        )
+    return "\n".join(lines)
+
+
+def force_report(rates: Sequence[float] = (100.0, 1000.0, 10000.0), refine: int = 100) -> str:
+    """The force-driven table with its scenario and the explicit coupling's stability numbers."""
+    p = LUGRE
+    lines = [
+        f"Force-driven scenario: a free {MASS:g} kg mass on the same friction, "
+        f"u = {FORCE_AMPLITUDE:g}*sin(2*pi*{FREQUENCY:g}*t) N for 1 s from rest; reference: implicit "
+        f"mass step at dt/{refine}, compared at the end of every coarse step",
+        "",
+        format_force_table(force_accuracy(rates, refine=refine)),
+        "",
+    ]
+    # The explicit scheme has two limits: the coupling at stick (the bristle spring and damper
+    # against the mass) and the friction's own forward Euler in sliding, dt·|v|·σ0/g(v) < 2.
+    speed = float(np.max(np.abs(simulate_mass_velocity(rates[-1] * refine, p))))
+    for rate in rates:
+        dt = 1.0 / rate
+        lines.append(
+            f"explicit stability numbers at {rate:g} Hz (each must stay below 2): "
+            f"dt^2*sigma0/m = {dt * dt * p.sigma0 / MASS:.3g}, dt*sigma1/m = {dt * p.sigma1 / MASS:.3g}, "
+            f"dt*max|v|*sigma0/Fc = {dt * speed * p.sigma0 / p.Fc:.3g} (max|v| = {speed:.3g} m/s)"
+        )
+    return "\n".join(lines)
+
+
+def full_report() -> str:
+    """Both cases: the velocity-driven tables of :func:`report`, then the force-driven one."""
+    return report() + "\n\n" + force_report()

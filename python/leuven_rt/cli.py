@@ -25,9 +25,54 @@ def _demo(arguments: argparse.Namespace) -> int:
 
 
 def _accuracy(arguments: argparse.Namespace) -> int:
-    from .accuracy import report
+    from .accuracy import full_report
 
-    print(report())
+    print(full_report())
+    return 0
+
+
+def _figures(arguments: argparse.Namespace) -> int:
+    from .figures import write_figures
+
+    for report in write_figures(Path(arguments.out), quick=arguments.quick):
+        print("\n".join(report.lines))
+        print(f"  figure: {report.path}\n")
+    return 0
+
+
+def _identify(arguments: argparse.Namespace) -> int:
+    from .errors import InputError
+    from .identification import identify
+
+    try:
+        result = identify(
+            arguments.data,
+            elements=arguments.elements,
+            asymmetric=arguments.asymmetric,
+            cutoff=arguments.cutoff,
+            held_out=arguments.held_out,
+            progress=not arguments.quiet,
+        )
+    except InputError as error:  # bad data or options: the message says what and where
+        print(f"leuven-rt identify: error: {error}", file=sys.stderr)
+        return 2
+    result.params.save(arguments.output)
+    if arguments.report:
+        Path(arguments.report).write_text(result.report.to_json() + "\n", encoding="utf-8")
+    if not arguments.quiet:
+        print(result.report.summary())
+        print(f"parameters: {arguments.output}")
+    for warning in result.report.warnings if arguments.quiet else ():
+        print(f"warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _control(arguments: argparse.Namespace) -> int:
+    from .closed_loop import compare, plot, report
+
+    comparison = compare()
+    print(report(comparison))
+    print(f"figure: {plot(comparison, Path(arguments.out) / 'closed_loop.png')}")
     return 0
 
 
@@ -39,9 +84,33 @@ def main(argv: Sequence[str] | None = None) -> int:
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.set_defaults(run=_demo)
     accuracy = commands.add_parser(
-        "accuracy", help="RMS error of explicit and implicit steps against a 100x finer solution"
+        "accuracy",
+        help="RMS error of explicit and implicit steps against a 100x finer solution, velocity- and force-driven",
     )
     accuracy.set_defaults(run=_accuracy)
+    figures = commands.add_parser(
+        "figures", help="reproduce the paper's Figs. 1, 4/5 and the free response, print their numbers"
+    )
+    figures.add_argument("--out", default="out", help="folder for the PNGs (default: out)")
+    figures.add_argument("--quick", action="store_true", help="two coarser step sizes for Fig. 1 (for tests)")
+    figures.set_defaults(run=_figures)
+    identify = commands.add_parser(
+        "identify", help="fit the model to a log of position and force (.csv t,x,f[,v] or EMPS .mat)"
+    )
+    identify.add_argument("data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file")
+    identify.add_argument("-o", "--output", required=True, help="where to write the parameter file (JSON)")
+    identify.add_argument("--report", help="also write the identification report here (JSON)")
+    identify.add_argument("--elements", type=int, help="number of Maxwell-slip elements (default: chosen from the data)")
+    identify.add_argument("--asymmetric", action="store_true", help="fit Fc_neg and Fs_neg as well")
+    identify.add_argument("--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)")
+    identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
+    identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    identify.set_defaults(run=_identify)
+    control = commands.add_parser(
+        "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
+    )
+    control.add_argument("--out", default="out", help="folder for the figure (default: out)")
+    control.set_defaults(run=_control)
     arguments = parser.parse_args(argv)
     return int(arguments.run(arguments))
 

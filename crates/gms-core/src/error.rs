@@ -39,6 +39,26 @@ pub enum Field {
     v,
     /// Position input.
     x,
+    /// Mass of a simulated machine (`MassSystem`).
+    mass,
+    /// Stiffness of the spring that holds or drags a simulated mass.
+    stiffness,
+    /// Speed at which the far end of that spring is dragged.
+    drive_speed,
+    /// Force applied to a simulated mass.
+    u,
+    /// Measured force (the output of online identification).
+    f,
+    /// Forgetting factor λ of recursive least squares.
+    forgetting,
+    /// Initial covariance p0 of recursive least squares (P = p0·I).
+    initial_covariance,
+    /// Bound on the trace of the covariance of recursive least squares.
+    max_trace,
+    /// Initial parameter estimate of recursive least squares.
+    initial,
+    /// Regressor of recursive least squares.
+    regressor,
 }
 
 impl Field {
@@ -60,6 +80,16 @@ impl Field {
             Field::dt => "dt",
             Field::v => "v",
             Field::x => "x",
+            Field::mass => "mass",
+            Field::stiffness => "stiffness",
+            Field::drive_speed => "drive_speed",
+            Field::u => "u",
+            Field::f => "f",
+            Field::forgetting => "forgetting",
+            Field::initial_covariance => "initial_covariance",
+            Field::max_trace => "max_trace",
+            Field::initial => "initial",
+            Field::regressor => "regressor",
         }
     }
 }
@@ -77,6 +107,8 @@ pub enum Error {
     NotPositive(Field),
     /// The field must be finite and non-negative.
     Negative(Field),
+    /// The field must be finite (any sign).
+    NotFiniteValue(Field),
     /// A static level is below its Coulomb level (`Fs < Fc` or `Fs_neg < Fc_neg`).
     StaticBelowCoulomb(Field),
     /// Element `index` of `W` or `Delta` is not finite and strictly positive.
@@ -103,6 +135,26 @@ pub enum Error {
         /// Index of the sample whose step diverged.
         index: usize,
     },
+    /// The field must be in the interval (0, 1].
+    NotInUnitInterval(Field),
+    /// `max_trace` is below the trace of the initial covariance (parameters × `initial_covariance`).
+    TraceBelowInitial,
+    /// A least-squares update overflowed although its inputs were finite: they are too large
+    /// for f64 arithmetic (inputs far outside SI magnitudes). The state is left as it was
+    /// before that sample (a single update reports index 0).
+    Overflow {
+        /// Index of the sample whose update overflowed.
+        index: usize,
+    },
+    /// An input slice of a block call does not have the length of the first input.
+    InputLengthMismatch {
+        /// The input whose length is wrong.
+        field: Field,
+        /// Length of the first input.
+        expected: usize,
+        /// Length that came.
+        got: usize,
+    },
     /// A block call's output slice does not have the length of its input.
     LengthMismatch {
         /// Length of the input.
@@ -117,6 +169,7 @@ impl fmt::Display for Error {
         match *self {
             Error::NotPositive(field) => write!(f, "`{field}` must be finite and > 0"),
             Error::Negative(field) => write!(f, "`{field}` must be finite and >= 0"),
+            Error::NotFiniteValue(field) => write!(f, "`{field}` must be finite"),
             Error::StaticBelowCoulomb(Field::Fs_neg) => f.write_str("`Fs_neg` must be >= `Fc_neg`"),
             Error::StaticBelowCoulomb(field) => write!(f, "`{field}` must be >= `Fc`"),
             Error::Element { field, index } => {
@@ -134,6 +187,21 @@ impl fmt::Display for Error {
                 "the explicit step diverged at sample {index}: dt is too large for the \
                  stiffness; use the implicit scheme"
             ),
+            Error::NotInUnitInterval(field) => write!(f, "`{field}` must be in (0, 1]"),
+            Error::TraceBelowInitial => f.write_str(
+                "`max_trace` must be >= the trace of the initial covariance \
+                 (parameters × `initial_covariance`)",
+            ),
+            Error::Overflow { index } => write!(
+                f,
+                "the least-squares update overflowed at sample {index}: the inputs are too \
+                 large for f64 arithmetic (are they in SI units?)"
+            ),
+            Error::InputLengthMismatch {
+                field,
+                expected,
+                got,
+            } => write!(f, "`{field}` has length {got}, expected {expected}"),
             Error::LengthMismatch { expected, got } => {
                 write!(f, "output has length {got}, expected {expected}")
             }

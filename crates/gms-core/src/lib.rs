@@ -6,6 +6,10 @@
 //!
 //! - [`Stribeck`]: the constant-velocity curve g(v), s(v), optionally direction-dependent.
 //! - [`MaxwellSlip`] and [`Linear`]: the hysteresis force Fh(z) ([`Hysteresis`]).
+//! - [`OnlineIdentifier`] ([`identification`]): recursive least squares on the terms that
+//!   enter linearly, for adaptation in the loop.
+//! - [`MassSystem`]: a mass on the friction model, driven by a force, with an optional spring
+//!   (to ground, or dragged: the stick-slip rig).
 //! - [`Params`]: one validated parameter set that drives any number of channels, each a
 //!   [`State`]; [`Params::step`] and the block calls [`Params::simulate`] advance them.
 //!
@@ -24,15 +28,21 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod compensator;
 mod error;
 pub mod hysteresis;
+pub mod identification;
 mod math;
+mod mechanics;
 mod model;
 mod solver;
 mod stribeck;
 
+pub use compensator::{evaluation_bound, Compensator, Mode};
 pub use error::{Error, Field};
 pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial};
+pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
+pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
 pub use solver::{Solution, MAX_ITERATIONS};
 pub use stribeck::Stribeck;

@@ -121,12 +121,7 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
-        if !v.is_finite() {
-            return Err(Error::NotFinite {
-                field: Field::v,
-                index: 0,
-            });
-        }
+        check_sample(v, Field::v)?;
         self.advance(state, v, dt, scheme)
     }
 
@@ -139,12 +134,7 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
-        if !x.is_finite() {
-            return Err(Error::NotFinite {
-                field: Field::x,
-                index: 0,
-            });
-        }
+        check_sample(x, Field::x)?;
         self.advance_position(state, x, dt, scheme)
     }
 
@@ -259,6 +249,14 @@ impl<H: Hysteresis> Params<H> {
 
 fn check_dt(dt: f64) -> Result<(), Error> {
     positive(dt, Field::dt).map(|_| ())
+}
+
+fn check_sample(value: f64, field: Field) -> Result<(), Error> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::NotFinite { field, index: 0 })
+    }
 }
 
 fn check_block(input: &[f64], field: Field, dt: f64, out: &[f64]) -> Result<(), Error> {

@@ -4,9 +4,12 @@
 //! with the GIL released, and maps gms-core's error enum onto the Python exception classes.
 //! Array shape and dtype checks happen in the Python package before the calls arrive here.
 
+mod compensator;
 mod engine;
 mod errors;
+mod mechanics;
 mod model;
+mod online;
 mod spec;
 
 use pyo3::prelude::*;
@@ -21,5 +24,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(spec::check_params, m)?)?;
     m.add_class::<model::Engine>()?;
+    m.add_class::<mechanics::MassEngine>()?;
+    m.add_class::<compensator::CompensatorEngine>()?;
+    m.add_class::<online::OnlineIdentifier>()?;
     Ok(())
 }

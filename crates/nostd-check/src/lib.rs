@@ -5,7 +5,9 @@
 //! link would ask for a global allocator that does not exist. Either way the build fails.
 #![no_std]
 
-use gms_core::{LeuvenParams, Linear, LuGreParams, MaxwellSlip, Scheme, Stribeck};
+use gms_core::{
+    Compensator, LeuvenParams, Linear, LuGreParams, MaxwellSlip, Mode, Scheme, Stribeck,
+};
 
 #[panic_handler]
 fn panic(_info: &core::panic::PanicInfo<'_>) -> ! {
@@ -53,5 +55,84 @@ pub extern "C" fn nostd_check_run(dt: f64) -> f64 {
             .step(&mut channel, v, dt, Scheme::Explicit)
             .unwrap_or(f64::NAN);
     }
+    // The compensator in both modes, with a parameter swap between two samples.
+    for mode in [Mode::Feedforward, Mode::Observer] {
+        let Ok(mut compensator) = Compensator::new(leuven, dt, mode) else {
+            return f64::NAN;
+        };
+        for (k, &v) in velocities.iter().enumerate() {
+            if k == 3 {
+                compensator.set_params(leuven);
+            }
+            total += compensator.step(v).unwrap_or(f64::NAN);
+        }
+    }
     total
+}
+
+/// Runs online identification (recursive least squares, nalgebra fixed-size matrices) with 10
+/// elements over a short log and returns the sum of its estimate, or NaN if it was rejected.
+#[no_mangle]
+pub extern "C" fn nostd_check_identify(dt: f64) -> f64 {
+    let settings = gms_core::RlsSettings {
+        forgetting: 0.999,
+        initial_covariance: 1e3,
+        max_trace: 1e5,
+    };
+    let delta = [1e-6, 2e-6, 3e-6, 4e-6, 5e-6, 6e-6, 7e-6, 8e-6, 9e-6, 1e-5];
+    let Ok(mut identifier) = gms_core::OnlineIdentifier::<10, 13>::new(delta, [0.0; 13], settings)
+    else {
+        return f64::NAN;
+    };
+    let velocities = [0.0, 1e-4, 1e-3, 1e-2, -1e-3, 0.0];
+    let mut x = 0.0;
+    for &v in &velocities {
+        x += v * dt;
+        if identifier.update(x, v, 0.3 * v + 0.1).is_err() {
+            return f64::NAN;
+        }
+    }
+    identifier.estimate().iter().sum()
+}
+
+/// Runs a mass on a 10-element Leuven model, dragged through a spring (the stick-slip rig), one
+/// sample at a time and as a block, in both schemes; returns the final position, or NaN if
+/// anything was rejected.
+#[no_mangle]
+pub extern "C" fn nostd_check_mass(dt: f64) -> f64 {
+    let Ok(stribeck) = Stribeck::new(1.0, 1.5, 1e-3, 2.0) else {
+        return f64::NAN;
+    };
+    let Ok(elements) = MaxwellSlip::new([0.2; 10], [2e-6; 10]) else {
+        return f64::NAN;
+    };
+    let Ok(friction) = LeuvenParams::new(stribeck, 2.0, 10.0, 0.4, elements) else {
+        return f64::NAN;
+    };
+    let Ok(spring) = gms_core::Spring::dragged(1e3, 1e-3) else {
+        return f64::NAN;
+    };
+    let Ok(system) = gms_core::MassSystem::new(friction, 1.0, spring) else {
+        return f64::NAN;
+    };
+    let mut state = system.state_at(0.0, 0.0);
+    let forces = [0.0, 0.5, 1.0, 2.0, -1.0, 0.0];
+    let (mut friction, mut x, mut v) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    let out = gms_core::Trajectory {
+        friction: &mut friction,
+        x: &mut x,
+        v: &mut v,
+    };
+    if system
+        .simulate(&mut state, &forces, dt, Scheme::Implicit, out)
+        .is_err()
+    {
+        return f64::NAN;
+    }
+    for &u in &forces {
+        if system.step(&mut state, u, dt, Scheme::Explicit).is_err() {
+            return f64::NAN;
+        }
+    }
+    state.x
 }

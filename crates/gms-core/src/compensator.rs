@@ -1,0 +1,324 @@
+//! Friction compensation for a control loop: the friction force to add to the command, one
+//! sample at a time.
+//!
+//! A [`Compensator`] is one axis of a control loop running at a fixed sample time: its own
+//! parameter set (so that it can be swapped while the loop runs), one channel of model state, the
+//! sample time (validated once, at construction) and the last output. Two ways to drive it
+//! ([`Mode`]):
+//!
+//! - **feedforward**: each sample gets the *desired* velocity of the trajectory; the output is
+//!   the friction the model predicts along the planned motion. No feedback through the model,
+//!   so it cannot destabilise the loop, but it ignores where the axis really is;
+//! - **observer**: each sample gets the *measured* position; the model runs on the motion that
+//!   really happened (v = Δx/dt, the first sample of a fresh compensator taking v = 0), so its
+//!   internal deflection z tracks the real junctions. Any position signal works, so a desired
+//!   position gives position-based feedforward.
+//!
+//! **Bounded work.** A step is one implicit model step: at most 2N + 1 evaluations of the
+//! hysteresis trial, each O(N) (see the solver), plus for n ∉ {1, 2} at most
+//! [`MAX_ITERATIONS`](crate::MAX_ITERATIONS) safeguarded Newton iterations on each of those
+//! pieces. [`Compensator::set_params`] costs at most 2N + 1 trial evaluations and two commits.
+//! Nothing allocates and nothing panics.
+//!
+//! **Parameter swap without a jump.** The hysteresis force Fh carries the model's memory; σ1·ż
+//! and σ2·v are memoryless. New parameters, applied to the old state (z, ζ) as they are, would
+//! generally give a different Fh at the same z: a jump of up to the whole friction level when,
+//! say, the Δᵢ change. So [`Compensator::set_params`] re-initialises the state for the new
+//! parameters: the elements are first made consistent with the new Δᵢ at the current z (those
+//! stretched beyond them slip), then z is moved along the new bank's trial curve until the new
+//! Fh equals the old one (clamped to ±ΣWᵢ of the new bank, the only forces it can hold). The
+//! next sample then starts from the force the loop has just applied, and the transition to the
+//! new model's behaviour follows the model's own dynamics: the change over that sample is O(dt)
+//! like any other's (tests/compensator.rs checks that it shrinks with dt, while the naive swap
+//! jumps by a fixed amount). What changes at once is the part without memory: σ2·v by Δσ2·v,
+//! and σ1·ż because ż = v·(1 − |Fh/g(v)|ⁿ·sgn(Fh)/sgn(v)) now uses the new g(v), by at most
+//! σ1·|v|·|1 − |Fh/g_new(v)|ⁿ|. Both are zero at rest and are the new model's answer to the same
+//! motion, not an artefact of the swap.
+
+use crate::error::{Error, Field};
+use crate::hysteresis::Hysteresis;
+use crate::model::{Params, Scheme, State};
+use crate::stribeck::positive;
+
+/// What the compensator's input is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// The desired velocity [m/s]: friction feedforward along the planned motion.
+    #[default]
+    Feedforward,
+    /// The measured position [m]: the model run as an observer of the real motion.
+    Observer,
+}
+
+impl Mode {
+    /// The input's name: `v` (velocity) or `x` (position), as in the errors.
+    pub const fn field(self) -> Field {
+        match self {
+            Mode::Feedforward => Field::v,
+            Mode::Observer => Field::x,
+        }
+    }
+}
+
+/// The most evaluations of the hysteresis trial one implicit step can take with `elements`
+/// Maxwell-slip elements: 2N + 1 (each element contributes two breakpoints to walk over).
+pub const fn evaluation_bound(elements: usize) -> usize {
+    2 * elements + 1
+}
+
+/// One axis of friction compensation at a fixed sample time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Compensator<H: Hysteresis> {
+    params: Params<H>,
+    state: State<H::Memory>,
+    dt: f64,
+    mode: Mode,
+    output: f64,
+}
+
+impl<H: Hysteresis> Compensator<H> {
+    /// A compensator at rest (relaxed state, output 0) with sample time `dt` (finite, > 0).
+    pub fn new(params: Params<H>, dt: f64, mode: Mode) -> Result<Self, Error> {
+        let dt = positive(dt, Field::dt)?;
+        Ok(Self {
+            state: params.relaxed_state(),
+            params,
+            dt,
+            mode,
+            output: 0.0,
+        })
+    }
+
+    /// The friction force to add to the command for this sample.
+    ///
+    /// `input` is the desired velocity (feedforward) or the measured position (observer). A
+    /// non-finite input, or a position jump so large that Δx/dt overflows, is reported; the
+    /// state and [`Compensator::output`] are left as they were, so a loop can keep applying the
+    /// last output.
+    #[inline]
+    pub fn step(&mut self, input: f64) -> Result<f64, Error> {
+        let force = match self.mode {
+            Mode::Feedforward => {
+                self.params
+                    .step(&mut self.state, input, self.dt, Scheme::Implicit)?
+            }
+            Mode::Observer => {
+                self.params
+                    .step_position(&mut self.state, input, self.dt, Scheme::Implicit)?
+            }
+        };
+        self.output = force;
+        Ok(force)
+    }
+
+    /// Swaps in new parameters between two samples, re-initialising the state so that the
+    /// hysteresis force carries over (see the module documentation). Never fails: `params` was
+    /// validated when it was built.
+    pub fn set_params(&mut self, params: Params<H>) {
+        let target = self
+            .params
+            .hysteresis()
+            .force(&self.state.memory, self.state.z);
+        let bank = params.hysteresis();
+        let mut memory = self.state.memory;
+        bank.commit(&mut memory, self.state.z);
+        let limit = bank.max_force();
+        let target = if target > limit {
+            limit
+        } else if target < -limit {
+            -limit
+        } else {
+            target
+        };
+        let z = match_force(bank, &memory, self.state.z, target);
+        bank.commit(&mut memory, z);
+        self.state.z = z;
+        self.state.memory = memory;
+        self.params = params;
+    }
+
+    /// Back to rest: relaxed state, no previous position, output 0.
+    pub fn reset(&mut self) {
+        self.state = self.params.relaxed_state();
+        self.output = 0.0;
+    }
+
+    /// The last force returned by [`Compensator::step`] (0 before the first).
+    pub fn output(&self) -> f64 {
+        self.output
+    }
+
+    /// The parameters in use.
+    pub fn params(&self) -> &Params<H> {
+        &self.params
+    }
+
+    /// The model state of the axis.
+    pub fn state(&self) -> &State<H::Memory> {
+        &self.state
+    }
+
+    /// The sample time [s].
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// What the input is.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+}
+
+/// The z at which the trial force of `bank` from `memory` equals `target`, starting the walk at
+/// `start`, where every element is within its limits (the memory was committed there).
+///
+/// The trial force is continuous, non-decreasing and piecewise linear; the walk follows it one
+/// linear piece at a time towards `target`, solving each piece in closed form. A bank has two
+/// breakpoints per element, hence at most 2N + 1 pieces; the cap below counts them from the size
+/// of the memory (one f64 per element). Starting from committed elements, the trial is flat in
+/// the direction of the walk only where every element is saturated, i.e. at ±ΣWᵢ, which a
+/// clamped `target` never lies beyond.
+fn match_force<H: Hysteresis>(bank: &H, memory: &H::Memory, start: f64, target: f64) -> f64 {
+    let elements = core::mem::size_of::<H::Memory>() / core::mem::size_of::<f64>();
+    let mut y = start;
+    for _ in 0..evaluation_bound(elements) {
+        let trial = bank.trial(memory, y);
+        let gap = target - trial.force;
+        let (slope, end) = if gap > 0.0 {
+            (trial.slope_right, trial.right)
+        } else {
+            (trial.slope_left, trial.left)
+        };
+        if gap == 0.0 || slope <= 0.0 {
+            return y;
+        }
+        let candidate = y + gap / slope;
+        let on_piece = if gap > 0.0 {
+            candidate <= end
+        } else {
+            candidate >= end
+        };
+        if on_piece {
+            return candidate;
+        }
+        y = end;
+    }
+    y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{LeuvenParams, Linear, LuGreParams, MaxwellSlip, Stribeck};
+
+    fn leuven(w: [f64; 3], delta: [f64; 3], sigma2: f64) -> LeuvenParams<3> {
+        let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
+        Params::new(
+            stribeck,
+            2.0,
+            30.0,
+            sigma2,
+            MaxwellSlip::new(w, delta).unwrap(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn matches_the_force_on_any_piece() {
+        let bank = MaxwellSlip::new([1.0, 2.0, 3.0], [1e-6, 2e-6, 4e-6]).unwrap();
+        let memory = [0.0, -1e-6, 2e-6];
+        for target in [-5.9, -3.0, -0.1, 0.0, 0.7, 2.5, 5.999] {
+            let z = match_force(&bank, &memory, 0.0, target);
+            assert!((bank.force(&memory, z) - target).abs() < 1e-12, "{target}");
+        }
+        // The extremes are reached at the last breakpoint.
+        let z = match_force(&bank, &memory, 0.0, 6.0);
+        assert!((bank.force(&memory, z) - 6.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn linear_spring_is_one_piece() {
+        let spring = Linear::new(1e5).unwrap();
+        assert_eq!(match_force(&spring, &(), 0.3, 2.0), 0.3 + (2.0 - 3e4) / 1e5);
+        let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
+        let params = LuGreParams::new(stribeck, 1.0, 316.0, 0.4, spring).unwrap();
+        let mut compensator = Compensator::new(params, 1e-3, Mode::Feedforward).unwrap();
+        compensator.step(1e-3).unwrap();
+        let before = params.hysteresis().force(&(), compensator.state().z);
+        let stiffer = LuGreParams::new(stribeck, 1.0, 316.0, 0.4, Linear::new(3e5).unwrap());
+        compensator.set_params(stiffer.unwrap());
+        let after = stiffer
+            .unwrap()
+            .hysteresis()
+            .force(&(), compensator.state().z);
+        assert!((after - before).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_dt_and_inputs_are_errors_that_change_nothing() {
+        let params = leuven([0.6, 0.6, 0.6], [1e-6, 2e-6, 4e-6], 0.4);
+        for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+            assert_eq!(
+                Compensator::new(params, dt, Mode::Observer),
+                Err(Error::NotPositive(Field::dt))
+            );
+        }
+        for mode in [Mode::Feedforward, Mode::Observer] {
+            let mut compensator = Compensator::new(params, 1e-3, mode).unwrap();
+            for k in 0..20 {
+                compensator.step(1e-6 * f64::from(k)).unwrap();
+            }
+            let before = compensator;
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                assert_eq!(
+                    compensator.step(bad),
+                    Err(Error::NotFinite {
+                        field: mode.field(),
+                        index: 0
+                    })
+                );
+                assert_eq!(compensator, before);
+                assert!(compensator.output().is_finite());
+            }
+        }
+        // A finite position whose difference overflows is a velocity error.
+        let mut observer = Compensator::new(params, 1e-3, Mode::Observer).unwrap();
+        observer.step(-f64::MAX).unwrap();
+        let before = observer;
+        assert_eq!(
+            observer.step(f64::MAX),
+            Err(Error::NotFinite {
+                field: Field::v,
+                index: 0
+            })
+        );
+        assert_eq!(observer, before);
+    }
+
+    #[test]
+    fn same_parameters_change_nothing() {
+        let params = leuven([0.6, 0.6, 0.6], [1e-6, 2e-6, 4e-6], 0.4);
+        let mut compensator = Compensator::new(params, 1e-3, Mode::Feedforward).unwrap();
+        for k in 0..50 {
+            compensator
+                .step(2e-3 * libm::sin(0.2 * f64::from(k)))
+                .unwrap();
+        }
+        let before = compensator;
+        compensator.set_params(params);
+        assert_eq!(compensator, before);
+    }
+
+    #[test]
+    fn reset_relaxes() {
+        let params = leuven([0.6, 0.6, 0.6], [1e-6, 2e-6, 4e-6], 0.4);
+        let mut compensator = Compensator::new(params, 1e-3, Mode::Observer).unwrap();
+        compensator.step(0.0).unwrap();
+        compensator.step(1e-6).unwrap();
+        compensator.reset();
+        assert_eq!(
+            compensator,
+            Compensator::new(params, 1e-3, Mode::Observer).unwrap()
+        );
+    }
+}

@@ -1,0 +1,431 @@
+//! # gms-ffi: the friction compensator for C
+//!
+//! A C ABI over gms-core's [`Compensator`](gms_core::Compensator), built as a static library
+//! (`libgms_ffi.a`) and a shared one (`libgms_ffi.so`), with the header `include/leuven_rt.h`
+//! (generated from this file by cbindgen; `tests/header.rs` fails if the two differ).
+//!
+//! ```c
+//! const double W[4] = {0.5, 0.5, 0.5, 0.5}, Delta[4] = {1e-6, 2e-6, 4e-6, 8e-6};
+//! leuven_rt_params p = {.Fc = 1.0, .Fs = 1.5, .Vs = 1e-3, .delta = 2.0, .n = 2.0,
+//!                       .sigma1 = 30.0, .sigma2 = 0.4, .W = W, .Delta = Delta, .elements = 4};
+//! leuven_rt_compensator *c = NULL;
+//! if (leuven_rt_compensator_create(&p, 1e-3, LEUVEN_RT_MODE_OBSERVER, &c, NULL) != LEUVEN_RT_OK) ...
+//! double force;
+//! leuven_rt_status s = leuven_rt_compensator_step(c, measured_position, &force); // every sample
+//! leuven_rt_compensator_destroy(c);
+//! ```
+//!
+//! Every function returns a [`leuven_rt_status`] and never crashes on a pointer it can check:
+//! null and misaligned pointers are refused with `LEUVEN_RT_INVALID_POINTER`. (A dangling or
+//! foreign pointer cannot be told from a valid one; passing one is undefined behaviour, as
+//! everywhere in C.) A rejected call changes nothing. `create` allocates the compensator once
+//! (its size depends on the number of elements, chosen at run time); `step`, `set_params`,
+//! `reset` and `output` never allocate, and gms-core never panics.
+//!
+//! All `unsafe` of the crate is in this file: dereferencing the caller's pointers, each behind
+//! the checks of [`checked`] and [`checked_mut`], and turning the boxed compensator into a
+//! handle and back.
+#![allow(non_camel_case_types)] // C names: leuven_rt_params, leuven_rt_status, ...
+#![allow(non_snake_case)] // the paper's parameter names: Fc, Fs, W, Delta, ...
+
+mod axis;
+
+use core::ffi::{c_char, CStr};
+
+use gms_core::{Error, Field, Mode};
+
+pub use axis::{build, Axis, Spec, SpecError};
+
+/// The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
+pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
+
+/// `mode` of `leuven_rt_compensator_create`: each sample's input is the desired velocity [m/s]
+/// and the output the friction feedforward along the planned motion.
+pub const LEUVEN_RT_MODE_FEEDFORWARD: i32 = 0;
+
+/// `mode` of `leuven_rt_compensator_create`: each sample's input is the measured position [m]
+/// and the model runs as an observer of the real motion.
+pub const LEUVEN_RT_MODE_OBSERVER: i32 = 1;
+
+/// What a call did. Everything but `LEUVEN_RT_OK` means the call changed nothing.
+#[repr(i32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum leuven_rt_status {
+    /// Done.
+    LEUVEN_RT_OK = 0,
+    /// A pointer argument is null or misaligned.
+    LEUVEN_RT_INVALID_POINTER = 1,
+    /// A parameter breaks its rule; the error detail names it.
+    LEUVEN_RT_INVALID_PARAMETER = 2,
+    /// `dt` is not finite and > 0.
+    LEUVEN_RT_INVALID_DT = 3,
+    /// `mode` is neither `LEUVEN_RT_MODE_FEEDFORWARD` nor `LEUVEN_RT_MODE_OBSERVER`.
+    LEUVEN_RT_INVALID_MODE = 4,
+    /// The input is NaN or infinite, or (observer) the position jump over dt gives a
+    /// velocity that is not finite. The output holds the last good force.
+    LEUVEN_RT_NOT_FINITE_INPUT = 5,
+    /// New parameters have another kind of hysteresis or number of elements than the
+    /// compensator's.
+    LEUVEN_RT_INCOMPATIBLE_PARAMS = 6,
+    /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
+    /// holds the last good force.
+    LEUVEN_RT_STEP_FAILED = 7,
+}
+
+use leuven_rt_status::*;
+
+/// Parameters of the modified Leuven model (DESIGN.md §2), SI units.
+///
+/// Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
+/// and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
+/// `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct leuven_rt_params {
+    /// Coulomb level [N].
+    pub Fc: f64,
+    /// Static level [N], >= `Fc`.
+    pub Fs: f64,
+    /// Coulomb level for v < 0 [N]; 0: `Fc`.
+    pub Fc_neg: f64,
+    /// Static level for v < 0 [N]; 0: `Fs`.
+    pub Fs_neg: f64,
+    /// Stribeck velocity [m/s].
+    pub Vs: f64,
+    /// Stribeck shape exponent.
+    pub delta: f64,
+    /// Transition-curve exponent.
+    pub n: f64,
+    /// Micro-viscous coefficient [N·s/m].
+    pub sigma1: f64,
+    /// Viscous coefficient [N·s/m].
+    pub sigma2: f64,
+    /// Stiffness of linear hysteresis [N/m]; 0 with Maxwell-slip elements.
+    pub sigma0: f64,
+    /// Saturation forces of the elements [N], `elements` values.
+    pub W: *const f64,
+    /// Break deflections of the elements [m], `elements` values.
+    pub Delta: *const f64,
+    /// Number of Maxwell-slip elements; 0 for linear hysteresis.
+    pub elements: usize,
+}
+
+/// Which parameter a `LEUVEN_RT_INVALID_PARAMETER` (or `LEUVEN_RT_INCOMPATIBLE_PARAMS`) is
+/// about.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct leuven_rt_error {
+    /// The field, spelled like the member of `leuven_rt_params` (a static string; "" when the
+    /// status is not about one field).
+    pub field: *const c_char,
+    /// For `W` and `Delta`: the offending element, or the expected number of elements when the
+    /// status is `LEUVEN_RT_INCOMPATIBLE_PARAMS`. 0 otherwise.
+    pub index: usize,
+}
+
+/// One axis of friction compensation (opaque).
+pub struct leuven_rt_compensator {
+    axis: Box<dyn Axis>,
+}
+
+/// A short English description of `status` (a static string; never null).
+#[no_mangle]
+pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
+    let message: &'static CStr = match status {
+        0 => c"ok",
+        1 => c"a pointer argument is null or misaligned",
+        2 => c"a parameter breaks its rule (see the error detail)",
+        3 => c"dt must be finite and > 0",
+        4 => c"mode must be LEUVEN_RT_MODE_FEEDFORWARD or LEUVEN_RT_MODE_OBSERVER",
+        5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
+        6 => c"the new parameters have another kind or number of elements",
+        7 => c"the step produced a non-finite force",
+        _ => c"unknown status",
+    };
+    message.as_ptr()
+}
+
+/// Creates a compensator at rest with sample time `dt` [s]; writes its handle to `*out`.
+///
+/// `error` may be null; otherwise it receives the offending field on
+/// `LEUVEN_RT_INVALID_PARAMETER`. On failure `*out` is left as it was.
+///
+/// # Safety
+/// `params`, `out` and `error` must each be null or point to a valid object of their type;
+/// `params->W` and `params->Delta` must be null or point to `params->elements` doubles.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create(
+    params: *const leuven_rt_params,
+    dt: f64,
+    mode: i32,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or a valid pointer (the function's contract).
+    let Some(out) = (unsafe { checked_mut(out) }) else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let mode = match mode {
+        LEUVEN_RT_MODE_FEEDFORWARD => Mode::Feedforward,
+        LEUVEN_RT_MODE_OBSERVER => Mode::Observer,
+        _ => return LEUVEN_RT_INVALID_MODE,
+    };
+    // SAFETY: as above, for `params` and the arrays it points to.
+    let Some(spec) = (unsafe { spec(params) }) else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    match build(&spec, dt, mode) {
+        Ok(axis) => {
+            *out = Box::into_raw(Box::new(leuven_rt_compensator { axis }));
+            LEUVEN_RT_OK
+        }
+        // SAFETY: as above, for `error`.
+        Err(reason) => report(reason, unsafe { checked_mut(error) }),
+    }
+}
+
+/// Destroys a compensator made by `leuven_rt_compensator_create`. Null is ignored.
+///
+/// # Safety
+/// `compensator` must be null or a handle from `leuven_rt_compensator_create` that has not
+/// been destroyed.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_destroy(compensator: *mut leuven_rt_compensator) {
+    if compensator.is_null() || !compensator.is_aligned() {
+        return;
+    }
+    // SAFETY: a live handle is a pointer from Box::into_raw in create, given back once.
+    drop(unsafe { Box::from_raw(compensator) });
+}
+
+/// One sample: the friction force to add to the command, written to `*force`.
+///
+/// `input` is the desired velocity [m/s] (feedforward) or the measured position [m]
+/// (observer). On `LEUVEN_RT_NOT_FINITE_INPUT` or `LEUVEN_RT_STEP_FAILED`, `*force` receives
+/// the last good force (0 before the first), which is finite, and the state is unchanged. On
+/// `LEUVEN_RT_INVALID_POINTER` with a valid `force`, `*force` receives 0.
+///
+/// # Safety
+/// `compensator` must be null or a live handle; `force` null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_step(
+    compensator: *mut leuven_rt_compensator,
+    input: f64,
+    force: *mut f64,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, force) = unsafe { (checked_mut(compensator), checked_mut(force)) };
+    let Some(force) = force else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let Some(compensator) = compensator else {
+        *force = 0.0;
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    match compensator.axis.step(input) {
+        Ok(value) => {
+            *force = value;
+            LEUVEN_RT_OK
+        }
+        Err(error) => {
+            *force = compensator.axis.output();
+            match error {
+                Error::NotFinite { .. } => LEUVEN_RT_NOT_FINITE_INPUT,
+                _ => LEUVEN_RT_STEP_FAILED,
+            }
+        }
+    }
+}
+
+/// Swaps in new parameters between two samples. The hysteresis force carries over, so the
+/// output has no jump. The new set must have the same kind of hysteresis and number of
+/// elements (`LEUVEN_RT_INCOMPATIBLE_PARAMS` otherwise, with the expected count in
+/// `error->index`).
+///
+/// # Safety
+/// As `leuven_rt_compensator_create` for `params` and `error`; `compensator` null or live.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_set_params(
+    compensator: *mut leuven_rt_compensator,
+    params: *const leuven_rt_params,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (Some(compensator), Some(spec)) =
+        (unsafe { checked_mut(compensator) }, unsafe { spec(params) })
+    else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    match compensator.axis.set_params(&spec) {
+        Ok(()) => LEUVEN_RT_OK,
+        // SAFETY: as above, for `error`.
+        Err(reason) => report(reason, unsafe { checked_mut(error) }),
+    }
+}
+
+/// Back to rest: relaxed state, no previous position, output 0.
+///
+/// # Safety
+/// `compensator` must be null or a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_reset(
+    compensator: *mut leuven_rt_compensator,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or a valid pointer (the function's contract).
+    match unsafe { checked_mut(compensator) } {
+        Some(compensator) => {
+            compensator.axis.reset();
+            LEUVEN_RT_OK
+        }
+        None => LEUVEN_RT_INVALID_POINTER,
+    }
+}
+
+/// The last force returned by a successful step (0 before the first), written to `*force`.
+///
+/// # Safety
+/// `compensator` must be null or a live handle; `force` null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_output(
+    compensator: *const leuven_rt_compensator,
+    force: *mut f64,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    match unsafe { (checked(compensator), checked_mut(force)) } {
+        (Some(compensator), Some(force)) => {
+            *force = compensator.axis.output();
+            LEUVEN_RT_OK
+        }
+        _ => LEUVEN_RT_INVALID_POINTER,
+    }
+}
+
+/// `pointer` as a reference, or `None` if it is null or misaligned.
+///
+/// # Safety
+/// A non-null, aligned `pointer` must point to a valid `T` that nothing else mutates for `'a`.
+unsafe fn checked<'a, T>(pointer: *const T) -> Option<&'a T> {
+    if pointer.is_aligned() {
+        // SAFETY: aligned here; valid or null by the caller's contract; as_ref maps null to None.
+        unsafe { pointer.as_ref() }
+    } else {
+        None
+    }
+}
+
+/// `pointer` as a mutable reference, or `None` if it is null or misaligned.
+///
+/// # Safety
+/// A non-null, aligned `pointer` must point to a valid `T` that nothing else accesses for `'a`.
+unsafe fn checked_mut<'a, T>(pointer: *mut T) -> Option<&'a mut T> {
+    if pointer.is_aligned() {
+        // SAFETY: as in `checked`.
+        unsafe { pointer.as_mut() }
+    } else {
+        None
+    }
+}
+
+/// `count` doubles at `pointer` (count 0: empty, whatever the pointer), or `None` if the
+/// pointer is null or misaligned, or the count is too large to be an array.
+///
+/// # Safety
+/// A non-null, aligned `pointer` must point to `count` doubles that nothing mutates for `'a`.
+unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
+    if count == 0 {
+        return Some(&[]);
+    }
+    // More than LEUVEN_RT_MAX_ELEMENTS is refused later with a parameter error; the cap here only keeps
+    // the slice within what from_raw_parts allows, whatever count comes.
+    let count = count.min(LEUVEN_RT_MAX_ELEMENTS + 1);
+    if pointer.is_null() || !pointer.is_aligned() {
+        return None;
+    }
+    // SAFETY: non-null and aligned here; `count` valid doubles by the caller's contract (the
+    // cap only shortens the slice); count·8 bytes is far below isize::MAX.
+    Some(unsafe { core::slice::from_raw_parts(pointer, count) })
+}
+
+/// The caller's parameters as a [`Spec`], or `None` for a null or misaligned pointer.
+///
+/// With more than `LEUVEN_RT_MAX_ELEMENTS` elements, only `LEUVEN_RT_MAX_ELEMENTS + 1` values are read, which is
+/// enough for [`build`] to refuse the count.
+///
+/// # Safety
+/// As [`checked`] for `params`, and as [`array`] for its `W` and `Delta`.
+unsafe fn spec<'a>(params: *const leuven_rt_params) -> Option<Spec<'a>> {
+    // SAFETY: passed on from the caller's contract.
+    let params = unsafe { checked(params) }?;
+    // SAFETY: passed on from the caller's contract.
+    let (w, big_delta) = unsafe {
+        (
+            array(params.W, params.elements)?,
+            array(params.Delta, params.elements)?,
+        )
+    };
+    Some(Spec {
+        fc: params.Fc,
+        fs: params.Fs,
+        fc_neg: params.Fc_neg,
+        fs_neg: params.Fs_neg,
+        vs: params.Vs,
+        delta: params.delta,
+        n: params.n,
+        sigma1: params.sigma1,
+        sigma2: params.sigma2,
+        sigma0: params.sigma0,
+        w,
+        big_delta,
+    })
+}
+
+/// The status of a refused parameter set, with the detail written where the caller wants it.
+fn report(reason: SpecError, detail: Option<&mut leuven_rt_error>) -> leuven_rt_status {
+    let (status, field, index) = match reason {
+        SpecError::Invalid(Error::NotPositive(Field::dt)) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
+        SpecError::Invalid(Error::Element { field, index }) => {
+            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
+        }
+        SpecError::Invalid(Error::NotPositive(field) | Error::Negative(field)) => {
+            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0)
+        }
+        SpecError::Invalid(Error::StaticBelowCoulomb(field)) => {
+            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0)
+        }
+        // sum(W) <= max(Fs, Fs_neg): the elements are too weak.
+        SpecError::Invalid(Error::ElementsTooWeak) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
+        SpecError::Invalid(_) => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
+        SpecError::BothHysteresis => (LEUVEN_RT_INVALID_PARAMETER, c"sigma0", 0),
+        SpecError::TooManyElements(_) => (LEUVEN_RT_INVALID_PARAMETER, c"elements", 0),
+        SpecError::Incompatible { expected, .. } => {
+            (LEUVEN_RT_INCOMPATIBLE_PARAMS, c"elements", expected)
+        }
+    };
+    if let Some(detail) = detail {
+        *detail = leuven_rt_error {
+            field: field.as_ptr(),
+            index,
+        };
+    }
+    status
+}
+
+/// The member of `leuven_rt_params` that holds `field`.
+fn field_name(field: Field) -> &'static CStr {
+    match field {
+        Field::Fc => c"Fc",
+        Field::Fs => c"Fs",
+        Field::Vs => c"Vs",
+        Field::delta => c"delta",
+        Field::n => c"n",
+        Field::sigma0 => c"sigma0",
+        Field::sigma1 => c"sigma1",
+        Field::sigma2 => c"sigma2",
+        Field::W => c"W",
+        Field::Delta => c"Delta",
+        Field::Fc_neg => c"Fc_neg",
+        Field::Fs_neg => c"Fs_neg",
+        Field::dt => c"dt",
+        _ => c"",
+    }
+}

@@ -1,0 +1,281 @@
+//! The C ABI from C: `tests/c/control_loop.c` is compiled with gcc against the static and the
+//! shared library that this `cargo test` built, run, and every number it prints is checked
+//! against the same control loop computed here with gms-core; every bad argument must come
+//! back as the expected status, not a crash.
+
+use std::collections::HashMap;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use gms_core::{Compensator, LeuvenParams, MaxwellSlip, Mode, Params, Stribeck};
+
+// The loop of control_loop.c, constant for constant.
+const DT: f64 = 1e-3;
+const SAMPLES: usize = 2000;
+const SWAP_AT: usize = 1000;
+const NAN_AT: usize = 1500;
+const MASS: f64 = 1.0;
+const DAMPING: f64 = 2.0;
+const KP: f64 = 4000.0;
+const KD: f64 = 80.0;
+const AMPLITUDE: f64 = 2e-4;
+const FREQUENCY: f64 = 2.0;
+
+fn params(fc: f64, fs: f64, vs: f64, w: [f64; 10], delta: [f64; 10]) -> LeuvenParams<10> {
+    let stribeck = Stribeck::new(fc, fs, vs, 2.0).unwrap();
+    Params::new(
+        stribeck,
+        2.0,
+        30.0,
+        0.4,
+        MaxwellSlip::new(w, delta).unwrap(),
+    )
+    .unwrap()
+}
+
+fn nominal() -> LeuvenParams<10> {
+    let delta = [1e-6, 2e-6, 3e-6, 4e-6, 5e-6, 6e-6, 7e-6, 8e-6, 9e-6, 1e-5];
+    params(1.0, 1.5, 1e-3, [0.2; 10], delta)
+}
+
+fn swapped() -> LeuvenParams<10> {
+    let w = [0.3, 0.3, 0.25, 0.25, 0.2, 0.2, 0.15, 0.15, 0.1, 0.1];
+    let delta = [
+        1.5e-6, 3e-6, 4e-6, 5e-6, 6e-6, 8e-6, 9e-6, 1e-5, 1.2e-5, 1.5e-5,
+    ];
+    params(1.1, 1.7, 1.5e-3, w, delta)
+}
+
+/// The loop of one mode, in Rust: (x, force) after each sample.
+fn rust_loop(mode: Mode) -> Vec<(f64, f64)> {
+    let mut compensator = Compensator::new(nominal(), DT, mode).unwrap();
+    let mut friction = Compensator::new(swapped(), DT, Mode::Observer).unwrap();
+    let (mut x, mut v) = (0.0, 0.0);
+    let mut out = Vec::with_capacity(SAMPLES);
+    for k in 0..SAMPLES {
+        if k == SWAP_AT {
+            compensator.set_params(swapped());
+        }
+        let t = k as f64 * DT;
+        let x_desired = AMPLITUDE * (1.0 - (2.0 * PI * FREQUENCY * t).cos());
+        let v_desired = AMPLITUDE * 2.0 * PI * FREQUENCY * (2.0 * PI * FREQUENCY * t).sin();
+        let force = if k == NAN_AT {
+            assert!(compensator.step(f64::NAN).is_err());
+            0.0
+        } else {
+            let input = match mode {
+                Mode::Feedforward => v_desired,
+                Mode::Observer => x,
+            };
+            compensator.step(input).unwrap()
+        };
+        let command = KP * (x_desired - x) + KD * (v_desired - v) + force;
+        let friction = friction.step(x).unwrap();
+        v += DT * (command - DAMPING * v - friction) / MASS;
+        x += DT * v;
+        out.push((x, force));
+    }
+    out
+}
+
+/// The directory of the libraries this test run built: cargo writes the static and shared
+/// library of gms-ffi beside the test binary, in `target/<profile>/deps`.
+fn library_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("path of the test binary");
+    let dir = exe.parent().expect("target/<profile>/deps");
+    for name in ["libgms_ffi.a", "libgms_ffi.so"] {
+        assert!(
+            dir.join(name).exists(),
+            "{name} not found in {}: cargo test builds it with the library",
+            dir.display()
+        );
+    }
+    dir.to_path_buf()
+}
+
+/// Compiles control_loop.c with gcc, linked statically or dynamically, and returns its output.
+fn compile_and_run(shared: bool) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let libraries = library_dir();
+    let binary = Path::new(env!("CARGO_TARGET_TMPDIR")).join(if shared {
+        "control_loop_shared"
+    } else {
+        "control_loop_static"
+    });
+    let mut gcc = Command::new("gcc");
+    gcc.args([
+        "-std=c11",
+        "-O2",
+        "-Wall",
+        "-Wextra",
+        "-Werror",
+        "-ffp-contract=off",
+    ])
+    .arg("-I")
+    .arg(root.join("include"))
+    .arg(root.join("tests/c/control_loop.c"))
+    .arg("-o")
+    .arg(&binary);
+    if shared {
+        gcc.arg(format!("-L{}", libraries.display()))
+            .arg("-lgms_ffi")
+            .arg(format!("-Wl,-rpath,{}", libraries.display()));
+    } else {
+        gcc.arg(libraries.join("libgms_ffi.a"));
+    }
+    // What a Rust static library needs from the system on Linux (`--print native-static-libs`).
+    gcc.args(["-lm", "-lpthread", "-ldl", "-lgcc_s", "-lc"]);
+    let compiled = gcc
+        .output()
+        .expect("gcc must be installed to test the C ABI");
+    assert!(
+        compiled.status.success(),
+        "gcc failed:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+    let run = Command::new(&binary).output().expect("run the C program");
+    assert!(
+        run.status.success(),
+        "the C program failed ({}):\n{}",
+        run.status,
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8(run.stdout).expect("UTF-8 output")
+}
+
+struct Printed {
+    loops: Vec<[f64; 4]>,
+    checks: HashMap<String, (i32, String, usize)>,
+    values: HashMap<String, f64>,
+}
+
+fn parse(output: &str) -> Printed {
+    let mut printed = Printed {
+        loops: Vec::new(),
+        checks: HashMap::new(),
+        values: HashMap::new(),
+    };
+    for line in output.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["loop", k, numbers @ ..] => {
+                assert_eq!(k.parse::<usize>().unwrap(), printed.loops.len());
+                let numbers: Vec<f64> = numbers.iter().map(|n| n.parse().unwrap()).collect();
+                printed.loops.push(numbers.try_into().unwrap());
+            }
+            ["check", name, status, field, index] => {
+                let entry = (
+                    status.parse().unwrap(),
+                    field.to_string(),
+                    index.parse().unwrap(),
+                );
+                printed.checks.insert(name.to_string(), entry);
+            }
+            ["value", name, value] => {
+                printed
+                    .values
+                    .insert(name.to_string(), value.parse().unwrap());
+            }
+            _ => panic!("unexpected line from the C program: {line}"),
+        }
+    }
+    printed
+}
+
+#[test]
+fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
+    let output = compile_and_run(false);
+    assert_eq!(
+        output,
+        compile_and_run(true),
+        "static and shared library disagree"
+    );
+    let printed = parse(&output);
+
+    // The loops: C through the ABI equals gms-core called from Rust.
+    assert_eq!(printed.loops.len(), SAMPLES);
+    let feedforward = rust_loop(Mode::Feedforward);
+    let observer = rust_loop(Mode::Observer);
+    let mut largest = 0.0f64;
+    for (k, c) in printed.loops.iter().enumerate() {
+        let rust = [
+            feedforward[k].0,
+            feedforward[k].1,
+            observer[k].0,
+            observer[k].1,
+        ];
+        for (a, b) in c.iter().zip(rust) {
+            largest = largest.max((a - b).abs() / b.abs().max(1e-6));
+            assert!(
+                (a - b).abs() <= 1e-12 * b.abs().max(1e-6),
+                "sample {k}: C {c:?} vs Rust {rust:?}"
+            );
+        }
+    }
+    // The compensator did real work: forces of the order of the friction level.
+    let peak = feedforward.iter().map(|s| s.1.abs()).fold(0.0, f64::max);
+    assert!(peak > 1.0, "peak feedforward force {peak}");
+    eprintln!("largest relative difference C vs Rust: {largest:e}");
+
+    // Bad input: (status, field, index) for each case.
+    const OK: i32 = 0;
+    const INVALID_POINTER: i32 = 1;
+    const INVALID_PARAMETER: i32 = 2;
+    const INVALID_DT: i32 = 3;
+    const INVALID_MODE: i32 = 4;
+    const NOT_FINITE_INPUT: i32 = 5;
+    const INCOMPATIBLE_PARAMS: i32 = 6;
+    let expected: &[(&str, i32, &str, usize)] = &[
+        ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
+        ("nan_observer", NOT_FINITE_INPUT, "-", 0),
+        ("create_null_params", INVALID_POINTER, "-", 0),
+        ("create_null_out", INVALID_POINTER, "-", 0),
+        ("create_dt_zero", INVALID_DT, "dt", 0),
+        ("create_dt_negative", INVALID_DT, "dt", 0),
+        ("create_dt_nan", INVALID_DT, "dt", 0),
+        ("create_bad_mode", INVALID_MODE, "-", 0),
+        ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+        ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
+        ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
+        ("create_w3_negative", INVALID_PARAMETER, "W", 3),
+        ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
+        ("create_w_null", INVALID_POINTER, "-", 0),
+        ("create_too_many_elements", INVALID_PARAMETER, "elements", 0),
+        ("create_both_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+        ("create_no_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+        ("create_misaligned_params", INVALID_POINTER, "-", 0),
+        ("step_null_handle", INVALID_POINTER, "-", 0),
+        ("set_params_null_handle", INVALID_POINTER, "-", 0),
+        ("reset_null_handle", INVALID_POINTER, "-", 0),
+        ("output_null_handle", INVALID_POINTER, "-", 0),
+        ("create_ok", OK, "-", 0),
+        ("step_null_force", INVALID_POINTER, "-", 0),
+        ("step_inf", NOT_FINITE_INPUT, "-", 0),
+        ("step_nan", NOT_FINITE_INPUT, "-", 0),
+        ("step_huge_jump", NOT_FINITE_INPUT, "-", 0),
+        ("set_params_fc_negative", INVALID_PARAMETER, "Fc", 0),
+        (
+            "set_params_other_count",
+            INCOMPATIBLE_PARAMS,
+            "elements",
+            10,
+        ),
+        ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
+    ];
+    for &(name, status, field, index) in expected {
+        let got = printed
+            .checks
+            .get(name)
+            .unwrap_or_else(|| panic!("no check {name} printed"));
+        assert_eq!(
+            got,
+            &(status, field.to_string(), index),
+            "{name}: (status, field, index)"
+        );
+    }
+    assert_eq!(printed.checks.len(), expected.len());
+    assert_eq!(printed.values["step_null_handle_force"], 0.0);
+    assert_eq!(printed.values["held_force_equal"], 1.0);
+    assert_eq!(printed.values["untouched_after_rejections"], 1.0);
+}

@@ -1,0 +1,43 @@
+"""Friction compensation for a control loop: :class:`Compensator`, stepped sample by sample.
+
+Each sample, ``step`` takes the desired velocity (``mode="feedforward"``) or the measured
+position (``mode="observer"``) and returns the friction force to add to the command. The model
+is the Rust core's (gms-core ``Compensator``), stepped implicitly at the fixed ``dt`` given at
+construction, with bounded work per step (at most 2N + 1 evaluations of the hysteresis force).
+``set_params`` swaps parameters between samples without a jump in the output: the hysteresis
+force carries over (see crates/gms-core/src/compensator.rs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from . import _core
+from .errors import InputError
+from .inputs import check_dt
+from .params import Params, as_params
+
+MODES = ("feedforward", "observer")
+
+
+class Compensator(_core.CompensatorEngine):
+    """One axis of friction compensation at the fixed sample time ``dt`` [s].
+
+    ``step(input) -> float``: the force for this sample (the fast path for a Python loop; a
+    non-finite input raises :class:`InputError` and leaves state and ``output`` unchanged).
+    ``set_params(params)``: new parameters of the same kind and number of elements.
+    ``reset()``: back to rest. ``output``: the last force returned.
+    """
+
+    def __new__(cls, params: Params | Mapping[str, Any], dt: float, mode: str = "feedforward") -> Compensator:
+        if mode not in MODES:
+            raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
+        return super().__new__(cls, as_params(params), check_dt(dt), str(mode))
+
+    def set_params(self, params: Params | Mapping[str, Any]) -> None:
+        """Swaps in new parameters between two samples; the hysteresis force carries over."""
+        super().set_params(as_params(params))
+
+    def __repr__(self) -> str:
+        return f"Compensator(mode={self.mode!r}, dt={self.dt!r}, elements={self.elements})"

@@ -1,0 +1,160 @@
+"""A simulated machine: a mass on the friction model, driven by a force, stepped in Rust.
+
+m·ẍ = u(t) − Ff + k·(a(t) − x): a free mass (``stiffness=0``), a spring to ground
+(``drive_speed=0``) or the stick-slip rig, whose spring's far end a(t) = drive_speed·t is dragged
+at constant speed. How the step integrates the mechanics and why it is stable at any dt is
+written in the module docs of ``crates/gms-core/src/mechanics``; :mod:`leuven_rt.reference_mechanics`
+is the same discrete step in numpy.
+
+- :class:`MassSystem`: stateful channels. ``step(u, dt) -> (friction, position, velocity)`` is the
+  closed-loop path (a controller reads position and velocity and computes the next u);
+  ``run(u, dt)`` continues over a whole signal; ``state``/``set_state`` checkpoint.
+- :func:`simulate_mass`: a whole force signal, (T,) or (B, T), from a given start.
+"""
+
+from __future__ import annotations
+
+import numbers
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _core
+from .errors import InputError
+from .inputs import as_channels, as_signal, check_dt, check_scheme
+from .params import Params, as_params
+from .reference_mechanics import MassTrajectory
+
+__all__ = ["MassState", "MassSystem", "MassTrajectory", "simulate_mass"]
+
+
+@dataclass(frozen=True, eq=False)
+class MassState:
+    """A checkpoint of every channel (copies)."""
+
+    position: NDArray[np.float64]
+    """x of each channel [m], shape (B,)."""
+    velocity: NDArray[np.float64]
+    """v of each channel [m/s], shape (B,)."""
+    anchor: NDArray[np.float64]
+    """Position of the spring's far end [m], shape (B,)."""
+    z: NDArray[np.float64]
+    """Friction deflection z [m], shape (B,)."""
+    zeta: NDArray[np.float64]
+    """Maxwell-slip element positions ζ, shape (B, N); (B, 0) for linear hysteresis."""
+
+
+def _channels(channels: Any) -> int:
+    if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
+        raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
+    if not 1 <= channels <= sys.maxsize:
+        raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
+    return int(channels)
+
+
+class MassSystem(_core.MassEngine):
+    """``channels`` masses on the friction model ``params``, with optional (dragged) spring.
+
+    ``mass`` > 0 [kg], ``stiffness`` ≥ 0 [N/m], ``drive_speed`` [m/s] (any sign), all finite:
+    otherwise :class:`ParameterError`. Every channel starts at rest at x = 0 (see :meth:`place`).
+    """
+
+    def __new__(
+        cls,
+        params: Params | Mapping[str, Any],
+        mass: float,
+        stiffness: float = 0.0,
+        drive_speed: float = 0.0,
+        channels: int = 1,
+        scheme: str = "implicit",
+    ) -> MassSystem:
+        return super().__new__(
+            cls, as_params(params), mass, stiffness, drive_speed, _channels(channels), check_scheme(scheme)
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"MassSystem(mass={self.mass}, stiffness={self.stiffness}, drive_speed={self.drive_speed}, "
+            f"channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
+        )
+
+    def place(self, position: ArrayLike = 0.0, velocity: ArrayLike = 0.0) -> None:
+        """Restarts every channel at ``position``/``velocity`` (scalars or (B,)), with relaxed
+        friction and the spring's far end at 0."""
+        b = self.channels
+        arrays = []
+        for name, value in (("position", position), ("velocity", velocity)):
+            try:
+                array = np.broadcast_to(np.asarray(value, dtype=np.float64), (b,))
+            except (TypeError, ValueError):
+                raise InputError(f"`{name}` must be a real number or have shape ({b},), got {value!r}") from None
+            arrays.append(np.ascontiguousarray(as_channels(array, name, b)))
+        self._place(*arrays)
+
+    def step_channels(self, u: ArrayLike, dt: float) -> MassTrajectory:
+        """One step of every channel with forces ``u`` of shape (B,); arrays of shape (B,)."""
+        array = as_channels(u, "u", self.channels)
+        out = self._run(np.ascontiguousarray(array[:, None]), check_dt(dt))
+        return MassTrajectory(out[0, :, 0], out[1, :, 0], out[2, :, 0])
+
+    def run(self, u: ArrayLike, dt: float) -> MassTrajectory:
+        """Continues every channel over forces ``u``: (T,) for one channel or (B, T)."""
+        array, one_dimensional = as_signal(u, "u")
+        if array.shape[0] != self.channels or (one_dimensional and self.channels != 1):
+            expected = "(T,) or (1, T)" if self.channels == 1 else f"({self.channels}, T)"
+            raise InputError(f"`u` must have shape {expected}, got shape {np.shape(u)}")
+        out = self._run(array, check_dt(dt))
+        if one_dimensional:
+            return MassTrajectory(out[0, 0], out[1, 0], out[2, 0])
+        return MassTrajectory(out[0], out[1], out[2])
+
+    @property
+    def state(self) -> MassState:
+        """A checkpoint of every channel."""
+        return MassState(*self._get_state())
+
+    def set_state(self, state: MassState) -> None:
+        """Restores a checkpoint taken from a system with the same channels and elements."""
+        if not isinstance(state, MassState):
+            raise InputError(f"`state` must be a MassState, got {type(state).__name__}")
+        b, n = self.channels, self.elements
+        arrays = []
+        for name in ("position", "velocity", "anchor", "z", "zeta"):
+            shape = (b, n) if name == "zeta" else (b,)
+            try:
+                array = np.asarray(getattr(state, name), dtype=np.float64)
+            except (TypeError, ValueError):
+                raise InputError(f"`state.{name}` must hold real numbers") from None
+            if array.shape != shape:
+                raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
+            if not np.isfinite(array).all():
+                raise InputError(f"`state.{name}` must be finite")
+            arrays.append(np.ascontiguousarray(array))
+        self._set_state(*arrays)
+
+
+def simulate_mass(
+    params: Params | Mapping[str, Any],
+    u: ArrayLike,
+    dt: float,
+    mass: float,
+    stiffness: float = 0.0,
+    drive_speed: float = 0.0,
+    position: float = 0.0,
+    velocity: float = 0.0,
+    scheme: str = "implicit",
+) -> MassTrajectory:
+    """The mass driven by applied force ``u`` [N], (T,) or (B, T) for B independent channels.
+
+    Each channel starts at ``position``/``velocity`` with relaxed friction and the spring's far
+    end at 0. Returns the friction force over each step and the position and velocity at its
+    end, each with the shape of ``u``. Runs in Rust with the GIL released.
+    """
+    array, one_dimensional = as_signal(u, "u")
+    system = MassSystem(params, mass, stiffness, drive_speed, array.shape[0], scheme)
+    system.place(position, velocity)
+    return system.run(array[0] if one_dimensional else array, dt)
