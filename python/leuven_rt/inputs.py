@@ -7,6 +7,7 @@ same error from either.
 from __future__ import annotations
 
 import numbers
+import sys
 from typing import Any
 
 import numpy as np
@@ -47,6 +48,16 @@ def as_signal(values: ArrayLike, name: str) -> tuple[NDArray[np.float64], bool]:
     return array, one_dimensional
 
 
+def as_channel_signal(values: ArrayLike, name: str, channels: int) -> tuple[NDArray[np.float64], bool]:
+    """:func:`as_signal` for an object of ``channels`` channels: (T,) only when it has one
+    channel, otherwise (``channels``, T)."""
+    array, one_dimensional = as_signal(values, name)
+    if array.shape[0] != channels or (one_dimensional and channels != 1):
+        expected = "(T,) or (1, T)" if channels == 1 else f"({channels}, T)"
+        raise InputError(f"`{name}` must have shape {expected}, got shape {np.shape(values)}")
+    return array, one_dimensional
+
+
 def as_channels(values: ArrayLike, name: str, channels: int) -> NDArray[np.float64]:
     """One sample per channel: a finite float64 array of shape (channels,), and nothing else."""
     try:
@@ -67,6 +78,15 @@ def check_dt(dt: Any) -> float:
     if not (np.isfinite(value) and value > 0.0):
         raise InputError(f"`dt` must be finite and > 0, got {value}")
     return value
+
+
+def check_channels(channels: Any) -> int:
+    """A channel count: an integer (not a bool) from 1 to ``sys.maxsize``."""
+    if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
+        raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
+    if not 1 <= channels <= sys.maxsize:
+        raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
+    return int(channels)
 
 
 def check_scheme(scheme: Any) -> str:

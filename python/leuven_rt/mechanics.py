@@ -14,8 +14,6 @@ is the same discrete step in numpy.
 
 from __future__ import annotations
 
-import numbers
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -25,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from .errors import InputError
-from .inputs import as_channels, as_signal, check_dt, check_scheme
+from .inputs import as_channel_signal, as_channels, as_signal, check_channels, check_dt, check_scheme
 from .params import Params, as_params
 from .reference_mechanics import MassTrajectory
 
@@ -48,14 +46,6 @@ class MassState:
     """Maxwell-slip element positions ζ, shape (B, N); (B, 0) for linear hysteresis."""
 
 
-def _channels(channels: Any) -> int:
-    if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
-        raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
-    if not 1 <= channels <= sys.maxsize:
-        raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
-    return int(channels)
-
-
 class MassSystem(_core.MassEngine):
     """``channels`` masses on the friction model ``params``, with optional (dragged) spring.
 
@@ -73,7 +63,7 @@ class MassSystem(_core.MassEngine):
         scheme: str = "implicit",
     ) -> MassSystem:
         return super().__new__(
-            cls, as_params(params), mass, stiffness, drive_speed, _channels(channels), check_scheme(scheme)
+            cls, as_params(params), mass, stiffness, drive_speed, check_channels(channels), check_scheme(scheme)
         )
 
     def __repr__(self) -> str:
@@ -103,10 +93,7 @@ class MassSystem(_core.MassEngine):
 
     def run(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """Continues every channel over forces ``u``: (T,) for one channel or (B, T)."""
-        array, one_dimensional = as_signal(u, "u")
-        if array.shape[0] != self.channels or (one_dimensional and self.channels != 1):
-            expected = "(T,) or (1, T)" if self.channels == 1 else f"({self.channels}, T)"
-            raise InputError(f"`u` must have shape {expected}, got shape {np.shape(u)}")
+        array, one_dimensional = as_channel_signal(u, "u", self.channels)
         out = self._run(array, check_dt(dt))
         if one_dimensional:
             return MassTrajectory(out[0, 0], out[1, 0], out[2, 0])

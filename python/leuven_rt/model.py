@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import numbers
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -13,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from .errors import InputError
-from .inputs import as_channels, as_signal, check_dt, check_scheme
+from .inputs import as_channel_signal, as_channels, check_channels, check_dt, check_scheme
 from .params import Params, as_params
 
 
@@ -43,11 +41,7 @@ class LeuvenModel(_core.Engine):
     def __new__(
         cls, params: Params | Mapping[str, Any], channels: int = 1, scheme: str = "implicit"
     ) -> LeuvenModel:
-        if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
-            raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
-        if not 1 <= channels <= sys.maxsize:
-            raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
-        return super().__new__(cls, as_params(params), int(channels), check_scheme(scheme))
+        return super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
 
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
@@ -69,10 +63,7 @@ class LeuvenModel(_core.Engine):
         return self._run_signal(x, "x", dt)
 
     def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> NDArray[np.float64]:
-        array, one_dimensional = as_signal(signal, name)
-        if array.shape[0] != self.channels or (one_dimensional and self.channels != 1):
-            expected = "(T,) or (1, T)" if self.channels == 1 else f"({self.channels}, T)"
-            raise InputError(f"`{name}` must have shape {expected}, got shape {np.shape(signal)}")
+        array, one_dimensional = as_channel_signal(signal, name, self.channels)
         out = self._run(array, check_dt(dt), name == "x")
         return out[0] if one_dimensional else out
 

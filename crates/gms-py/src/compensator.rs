@@ -7,20 +7,19 @@
 
 use gms_core::{Compensator, Error, Field, Hysteresis, Linear, MaxwellSlip, Mode, Params, State};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat};
 use seq_macro::seq;
 
+use crate::bank::Memory;
+use crate::convert::real;
 use crate::engine::MAX_ELEMENTS;
-use crate::errors::{parameter_error, InputError, ParameterError};
+use crate::errors::{dt_error, InputError, ParameterError};
 use crate::spec::Spec;
 
 /// A hysteresis whose parameters can be read from a [`Spec`] of the same kind and size.
-trait FromSpec: Hysteresis + Sized {
+trait FromSpec: Hysteresis<Memory: Memory> + Sized {
     /// The validated parameters, or a `ParameterError` if `spec` is invalid or of another kind
     /// or size than `Self`.
     fn params(spec: &Spec) -> PyResult<Params<Self>>;
-    /// The memory as a flat slice.
-    fn memory(memory: &Self::Memory) -> &[f64];
 }
 
 impl<const N: usize> FromSpec for MaxwellSlip<N> {
@@ -31,16 +30,7 @@ impl<const N: usize> FromSpec for MaxwellSlip<N> {
                 describe(spec)
             )));
         }
-        let (mut w, mut delta) = ([0.0; N], [0.0; N]);
-        w.copy_from_slice(&spec.w);
-        delta.copy_from_slice(&spec.big_delta);
-        let elements = MaxwellSlip::new(w, delta).map_err(|error| parameter_error(error, spec))?;
-        Params::new(spec.stribeck()?, spec.n, spec.sigma1, spec.sigma2, elements)
-            .map_err(|error| parameter_error(error, spec))
-    }
-
-    fn memory(memory: &[f64; N]) -> &[f64] {
-        memory
+        spec.maxwell::<N>()
     }
 }
 
@@ -54,10 +44,6 @@ impl FromSpec for Linear {
                 describe(spec)
             ))),
         }
-    }
-
-    fn memory(_memory: &()) -> &[f64] {
-        &[]
     }
 }
 
@@ -84,7 +70,6 @@ trait Axis: Send + Sync {
 impl<H> Axis for Compensator<H>
 where
     H: FromSpec + Send + Sync,
-    H::Memory: Send + Sync,
 {
     #[inline]
     fn step(&mut self, input: f64) -> Result<f64, Error> {
@@ -113,7 +98,7 @@ where
     }
 
     fn elements(&self) -> usize {
-        H::memory(&self.state().memory).len()
+        <H::Memory as Memory>::LEN
     }
 
     fn state(&self) -> (f64, Vec<f64>, Option<f64>) {
@@ -122,17 +107,15 @@ where
             memory,
             last_position,
         } = self.state();
-        (*z, H::memory(memory).to_vec(), *last_position)
+        (*z, memory.values().to_vec(), *last_position)
     }
 }
 
 fn axis<H>(params: Params<H>, dt: f64, mode: Mode) -> PyResult<Box<dyn Axis>>
 where
     H: FromSpec + Send + Sync + 'static,
-    H::Memory: Send + Sync,
 {
-    let compensator = Compensator::new(params, dt, mode)
-        .map_err(|_| InputError::new_err(format!("`dt` must be finite and > 0, got {dt}")))?;
+    let compensator = Compensator::new(params, dt, mode).map_err(|_| dt_error(dt))?;
     Ok(Box::new(compensator))
 }
 
@@ -165,23 +148,6 @@ fn parse_mode(mode: &str) -> PyResult<Mode> {
             "`mode` must be 'feedforward' or 'observer', got {other:?}"
         ))),
     }
-}
-
-/// A Python real number as f64 (floats first, then ints and numpy scalars; not bools).
-#[inline]
-fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
-    if let Ok(float) = value.cast::<PyFloat>() {
-        return Ok(float.value());
-    }
-    if !value.is_instance_of::<PyBool>() {
-        if let Ok(number) = value.extract::<f64>() {
-            return Ok(number);
-        }
-    }
-    Err(InputError::new_err(format!(
-        "`{name}` must be a real number, got {}",
-        value.repr()?
-    )))
 }
 
 /// One axis of friction compensation at a fixed sample time.

@@ -4,12 +4,13 @@
 //! `build` bridges the two by monomorphising the bank for every N up to [`MAX_ELEMENTS`] and
 //! handing it back behind the object-safe [`Engine`] trait.
 
-use gms_core::{Error, Hysteresis, MaxwellSlip, Params, Scheme, State};
+use gms_core::{Error, Hysteresis, Params, Scheme, State};
 use pyo3::PyResult;
 use rayon::prelude::*;
 use seq_macro::seq;
 
-use crate::errors::{parameter_error, InputError, ParameterError};
+use crate::bank::{all_or_nothing, first_failure, Memory};
+use crate::errors::{InputError, ParameterError};
 use crate::spec::Spec;
 
 /// The largest number of Maxwell-slip elements the Python package accepts.
@@ -43,29 +44,6 @@ pub trait Engine: Send + Sync {
     );
     /// Copies states in; slices have the lengths `read_state` uses.
     fn write_state(&mut self, z: &[f64], memory: &[f64], last: &[f64], has_last: &[bool]);
-}
-
-/// Per-channel hysteresis memory seen as a flat slice.
-trait Memory: Copy + Send + Sync {
-    const LEN: usize;
-    fn read(&self, out: &mut [f64]);
-    fn write(&mut self, values: &[f64]);
-}
-
-impl<const N: usize> Memory for [f64; N] {
-    const LEN: usize = N;
-    fn read(&self, out: &mut [f64]) {
-        out.copy_from_slice(self);
-    }
-    fn write(&mut self, values: &[f64]) {
-        self.copy_from_slice(values);
-    }
-}
-
-impl Memory for () {
-    const LEN: usize = 0;
-    fn read(&self, _out: &mut [f64]) {}
-    fn write(&mut self, _values: &[f64]) {}
 }
 
 /// One channel's state with its input row and output row.
@@ -138,31 +116,21 @@ where
             }
         };
         if self.states.len() <= 1 {
-            return self
-                .states
-                .iter_mut()
-                .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
+            // One channel: gms-core's own all-or-nothing is enough, no copy needed.
+            return first_failure(
+                self.states
+                    .iter_mut()
+                    .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
+                    .map(run_one),
+            );
+        }
+        all_or_nothing(&mut self.states, |states| {
+            states
+                .par_iter_mut()
+                .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
                 .map(run_one)
-                .enumerate()
-                .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)));
-        }
-        // All or nothing across channels too: a channel that fails has already put its own
-        // state back (gms-core does), the others are put back from this copy.
-        let before = self.states.clone();
-        let results: Vec<Result<(), Error>> = self
-            .states
-            .par_iter_mut()
-            .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
-            .map(run_one)
-            .collect();
-        let outcome = results
-            .into_iter()
-            .enumerate()
-            .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)));
-        if outcome.is_err() {
-            self.states = before;
-        }
-        outcome
+                .collect()
+        })
     }
 
     fn reset(&mut self) {
@@ -219,21 +187,6 @@ where
     }))
 }
 
-fn maxwell<const N: usize>(
-    spec: &Spec,
-    channels: usize,
-    scheme: Scheme,
-) -> PyResult<Box<dyn Engine>> {
-    let mut w = [0.0; N];
-    let mut delta = [0.0; N];
-    w.copy_from_slice(&spec.w);
-    delta.copy_from_slice(&spec.big_delta);
-    let elements = MaxwellSlip::new(w, delta).map_err(|error| parameter_error(error, spec))?;
-    let params = Params::new(spec.stribeck()?, spec.n, spec.sigma1, spec.sigma2, elements)
-        .map_err(|error| parameter_error(error, spec))?;
-    bank(params, channels, scheme)
-}
-
 /// Validates `spec` and returns `channels` relaxed channels of it.
 pub fn build(spec: &Spec, channels: usize, scheme: Scheme) -> PyResult<Box<dyn Engine>> {
     if let Some(sigma0) = spec.sigma0 {
@@ -246,7 +199,7 @@ pub fn build(spec: &Spec, channels: usize, scheme: Scheme) -> PyResult<Box<dyn E
     }
     seq!(N in 1..=32 {
         match spec.w.len() {
-            #(N => maxwell::<N>(spec, channels, scheme),)*
+            #(N => bank(spec.maxwell::<N>()?, channels, scheme),)*
             0 if spec.maxwell_given => Err(ParameterError::new_err(
                 "`W` and `Delta` need at least one element, got empty sequences",
             )),

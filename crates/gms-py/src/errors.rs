@@ -81,13 +81,44 @@ pub fn run_error(error: Error, value: f64, channel: Option<usize>) -> PyErr {
              implicit scheme",
             at(index)
         )),
-        Error::NotPositive(Field::dt) => {
-            InputError::new_err(format!("`dt` must be finite and > 0, got {value}"))
-        }
+        Error::NotPositive(Field::dt) => dt_error(value),
         Error::NotFinite { field, index } => InputError::new_err(format!(
             "`{field}` must be finite, got {value} at {}",
             at(index)
         )),
         other => InputError::new_err(other.to_string()),
     }
+}
+
+/// A step size that is not finite and > 0.
+pub fn dt_error(dt: f64) -> PyErr {
+    InputError::new_err(format!("`dt` must be finite and > 0, got {dt}"))
+}
+
+/// The error of a single step of one channel: the value shown is the offending input or dt.
+pub fn step_error(error: Error, input: f64, dt: f64) -> PyErr {
+    let value = match error {
+        Error::NotPositive(_) => dt,
+        // A finite position can still give an infinite velocity over a tiny dt.
+        _ if input.is_finite() => f64::INFINITY,
+        _ => input,
+    };
+    run_error(error, value, None)
+}
+
+/// The error of a block call; `row` is the channel's input, or the (B,) samples of one step
+/// with `offset` channels before it.
+pub fn block_error(error: Error, row: &[f64], offset: usize, channel: Option<usize>) -> PyErr {
+    let value = match error {
+        Error::NotFinite { index, .. } => {
+            let sample = row.get(index + offset).copied().unwrap_or(f64::NAN);
+            if sample.is_finite() {
+                f64::INFINITY
+            } else {
+                sample
+            }
+        }
+        _ => f64::NAN,
+    };
+    run_error(error, value, channel)
 }

@@ -4,7 +4,9 @@
 //! with the GIL released, and maps gms-core's error enum onto the Python exception classes.
 //! Array shape and dtype checks happen in the Python package before the calls arrive here.
 
+mod bank;
 mod compensator;
+mod convert;
 mod engine;
 mod errors;
 mod mechanics;

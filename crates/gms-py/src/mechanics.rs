@@ -2,59 +2,22 @@
 //! `MassSystem`), stepped from Python. `leuven_rt.MassSystem` subclasses it.
 
 use gms_core::{
-    Error, Hysteresis, MassSample, MassState, MassSystem, MaxwellSlip, Params, Scheme, Spring,
-    Trajectory,
+    Error, Hysteresis, MassSample, MassState, MassSystem, Params, Scheme, Spring, Trajectory,
 };
 use numpy::{
     PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat};
 use rayon::prelude::*;
 use seq_macro::seq;
 
-use crate::errors::{parameter_error, run_error, InputError, ParameterError};
+use crate::bank::{all_or_nothing, Memory};
+use crate::convert::{
+    channel_count, check_dt, parse_scheme, real, same_channels, scheme_name, single_channel,
+};
+use crate::errors::{block_error, step_error, InputError, ParameterError};
 use crate::spec::Spec;
-
-/// A real number as f64 (floats, ints, numpy scalars; not bools).
-fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
-    if let Ok(float) = value.cast::<PyFloat>() {
-        return Ok(float.value());
-    }
-    if !value.is_instance_of::<PyBool>() {
-        if let Ok(number) = value.extract::<f64>() {
-            return Ok(number);
-        }
-    }
-    Err(InputError::new_err(format!(
-        "`{name}` must be a real number, got {}",
-        value.repr()?
-    )))
-}
-
-/// Per-channel hysteresis memory as a flat slice.
-trait Memory: Copy + Send + Sync {
-    const LEN: usize;
-    fn read(&self, out: &mut [f64]);
-    fn write(&mut self, values: &[f64]);
-}
-
-impl<const N: usize> Memory for [f64; N] {
-    const LEN: usize = N;
-    fn read(&self, out: &mut [f64]) {
-        out.copy_from_slice(self);
-    }
-    fn write(&mut self, values: &[f64]) {
-        self.copy_from_slice(values);
-    }
-}
-
-impl Memory for () {
-    const LEN: usize = 0;
-    fn read(&self, _out: &mut [f64]) {}
-    fn write(&mut self, _values: &[f64]) {}
-}
 
 /// One channel's states as flat values: x, v, anchor, z and the memory.
 struct StateSlices<'a> {
@@ -109,25 +72,17 @@ where
         let samples = u.len().checked_div(self.states.len()).unwrap_or(0).max(1);
         let (system, scheme) = (&self.system, self.scheme);
         let [friction, x, v] = out;
-        let before = self.states.clone();
-        let results: Vec<Result<(), Error>> = self
-            .states
-            .par_iter_mut()
-            .zip(u.par_chunks(samples))
-            .zip(friction.par_chunks_mut(samples))
-            .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
-            .map(|(((state, u), friction), (x, v))| {
-                system.simulate(state, u, dt, scheme, Trajectory { friction, x, v })
-            })
-            .collect();
-        let outcome = results
-            .into_iter()
-            .enumerate()
-            .try_for_each(|(channel, result)| result.map_err(|error| (channel, error)));
-        if outcome.is_err() {
-            self.states = before;
-        }
-        outcome
+        all_or_nothing(&mut self.states, |states| {
+            states
+                .par_iter_mut()
+                .zip(u.par_chunks(samples))
+                .zip(friction.par_chunks_mut(samples))
+                .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
+                .map(|(((state, u), friction), (x, v))| {
+                    system.simulate(state, u, dt, scheme, Trajectory { friction, x, v })
+                })
+                .collect()
+        })
     }
 
     fn place(&mut self, x: &[f64], v: &[f64]) {
@@ -216,22 +171,6 @@ where
     }))
 }
 
-fn maxwell<const N: usize>(
-    spec: &Spec,
-    mechanics: Mechanics,
-    channels: usize,
-    scheme: Scheme,
-) -> PyResult<Box<dyn Channels>> {
-    let mut w = [0.0; N];
-    let mut delta = [0.0; N];
-    w.copy_from_slice(&spec.w);
-    delta.copy_from_slice(&spec.big_delta);
-    let elements = MaxwellSlip::new(w, delta).map_err(|error| parameter_error(error, spec))?;
-    let friction = Params::new(spec.stribeck()?, spec.n, spec.sigma1, spec.sigma2, elements)
-        .map_err(|error| parameter_error(error, spec))?;
-    bank(friction, mechanics, channels, scheme)
-}
-
 fn build(
     spec: &Spec,
     mechanics: Mechanics,
@@ -245,24 +184,13 @@ fn build(
     }
     seq!(N in 1..=32 {
         match spec.w.len() {
-            #(N => maxwell::<N>(spec, mechanics, channels, scheme),)*
+            #(N => bank(spec.maxwell::<N>()?, mechanics, channels, scheme),)*
             count => Err(ParameterError::new_err(format!(
                 "`W` and `Delta` may have at most {} elements, got {count}",
                 crate::engine::MAX_ELEMENTS
             ))),
         }
     })
-}
-
-fn parse_scheme(scheme: &Bound<'_, PyAny>) -> PyResult<Scheme> {
-    match scheme.extract::<String>().as_deref() {
-        Ok("implicit") => Ok(Scheme::Implicit),
-        Ok("explicit") => Ok(Scheme::Explicit),
-        _ => Err(InputError::new_err(format!(
-            "`scheme` must be 'implicit' or 'explicit', got {}",
-            scheme.repr()?
-        ))),
-    }
 }
 
 /// x, v, anchor, z of every channel (B,) and zeta (B, N).
@@ -280,16 +208,6 @@ pub struct MassEngine {
     channels: Box<dyn Channels>,
     mechanics: Mechanics,
     params: Py<PyAny>,
-}
-
-fn check_dt(dt: f64) -> PyResult<f64> {
-    if dt.is_finite() && dt > 0.0 {
-        Ok(dt)
-    } else {
-        Err(InputError::new_err(format!(
-            "`dt` must be finite and > 0, got {dt}"
-        )))
-    }
 }
 
 #[pymethods]
@@ -317,14 +235,10 @@ impl MassEngine {
             stiffness: stiffness.map_or(Ok(0.0), |value| number(value, "stiffness"))?,
             drive_speed: drive_speed.map_or(Ok(0.0), |value| number(value, "drive_speed"))?,
         };
-        if channels < 1 {
-            return Err(InputError::new_err(format!(
-                "`channels` must be >= 1, got {channels}"
-            )));
-        }
-        let scheme = scheme.map(parse_scheme).transpose()?.unwrap_or_default();
+        let channels = channel_count(channels)?;
+        let scheme = parse_scheme(scheme)?;
         let spec = Spec::extract(params)?;
-        let channels = build(&spec, mechanics, channels as usize, scheme)?;
+        let channels = build(&spec, mechanics, channels, scheme)?;
         Ok(Self {
             channels,
             mechanics,
@@ -365,30 +279,18 @@ impl MassEngine {
     /// 'implicit' or 'explicit'.
     #[getter]
     fn scheme(&self) -> &'static str {
-        match self.channels.scheme() {
-            Scheme::Implicit => "implicit",
-            Scheme::Explicit => "explicit",
-        }
+        scheme_name(self.channels.scheme())
     }
 
     /// One step of a single-channel system with applied force `u` held over `dt`; returns
     /// (friction force, position, velocity) at the end of the step.
     fn step(&mut self, u: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<(f64, f64, f64)> {
-        if self.channels.channels() != 1 {
-            return Err(InputError::new_err(format!(
-                "`step` steps one channel, this system has {}: use `step_channels`",
-                self.channels.channels()
-            )));
-        }
+        single_channel(self.channels.channels(), "step", "system")?;
         let (u, dt) = (real(u, "u")?, real(dt, "dt")?);
-        let sample = self.channels.step(0, u, dt).map_err(|error| {
-            let value = if matches!(error, Error::NotPositive(_)) {
-                dt
-            } else {
-                u
-            };
-            run_error(error, value, None)
-        })?;
+        let sample = self
+            .channels
+            .step(0, u, dt)
+            .map_err(|error| step_error(error, u, dt))?;
         Ok((sample.friction, sample.x, sample.v))
     }
 
@@ -402,13 +304,7 @@ impl MassEngine {
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         let dt = check_dt(dt)?;
         let shape = [u.shape()[0], u.shape()[1]];
-        if shape[0] != self.channels.channels() {
-            return Err(InputError::new_err(format!(
-                "`u` has {} channels, this system has {}",
-                shape[0],
-                self.channels.channels()
-            )));
-        }
+        same_channels(shape[0], self.channels.channels(), "`u`", "system")?;
         let u = u.as_slice()?;
         let size = u.len();
         let mut out = vec![0.0; 3 * size];
@@ -420,11 +316,12 @@ impl MassEngine {
             channels.run(u, dt, [friction, x, v])
         })
         .map_err(|(channel, error)| {
-            let value = match error {
-                Error::NotFinite { index, .. } => u[channel * shape[1] + index],
-                _ => f64::NAN,
-            };
-            run_error(error, value, multiple.then_some(channel))
+            block_error(
+                error,
+                &u[channel * shape[1]..],
+                0,
+                multiple.then_some(channel),
+            )
         })?;
         PyArray1::from_vec(py, out).reshape([3, shape[0], shape[1]])
     }

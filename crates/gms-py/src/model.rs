@@ -1,77 +1,17 @@
 //! `_core.Engine`: channels of one model, stepped from Python. `leuven_rt.LeuvenModel` subclasses
 //! it, so that `step` reaches Rust without a Python frame in between.
 
-use gms_core::Scheme;
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat};
 
+use crate::convert::{
+    channel_count, check_dt, parse_scheme, real, same_channels, scheme_name, single_channel,
+};
 use crate::engine::{build, Engine as Channels};
-use crate::errors::{run_error, InputError};
+use crate::errors::{block_error, step_error, InputError};
 use crate::spec::Spec;
-
-/// A Python real number as f64: floats on the fast path, then ints and numpy scalars; bools
-/// and everything else are refused.
-#[inline]
-fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
-    if let Ok(float) = value.cast::<PyFloat>() {
-        return Ok(float.value());
-    }
-    if !value.is_instance_of::<PyBool>() {
-        if let Ok(number) = value.extract::<f64>() {
-            return Ok(number);
-        }
-    }
-    Err(InputError::new_err(format!(
-        "`{name}` must be a real number, got {}",
-        value.repr()?
-    )))
-}
-
-/// The error of a single step: the value shown is the offending input or dt.
-fn step_error(error: gms_core::Error, input: f64, dt: f64) -> PyErr {
-    let value = match error {
-        gms_core::Error::NotPositive(_) => dt,
-        // A finite position can still give an infinite velocity over a tiny dt.
-        _ if input.is_finite() => f64::INFINITY,
-        _ => input,
-    };
-    run_error(error, value, None)
-}
-
-/// The error of a block call; `row` is the channel's input, or the (B,) samples of one step
-/// with `offset` channels before it.
-fn block_error(
-    error: gms_core::Error,
-    row: &[f64],
-    offset: usize,
-    channel: Option<usize>,
-) -> PyErr {
-    let value = match error {
-        gms_core::Error::NotFinite { index, .. } => {
-            let sample = row.get(index + offset).copied().unwrap_or(f64::NAN);
-            if sample.is_finite() {
-                f64::INFINITY
-            } else {
-                sample
-            }
-        }
-        _ => f64::NAN,
-    };
-    run_error(error, value, channel)
-}
-
-fn parse_scheme(scheme: &str) -> PyResult<Scheme> {
-    match scheme {
-        "implicit" => Ok(Scheme::Implicit),
-        "explicit" => Ok(Scheme::Explicit),
-        other => Err(InputError::new_err(format!(
-            "`scheme` must be 'implicit' or 'explicit', got {other:?}"
-        ))),
-    }
-}
 
 /// z, zeta, last_position and has_last_position of every channel.
 type StateArrays<'py> = (
@@ -88,29 +28,6 @@ pub struct Engine {
     params: Py<PyAny>,
 }
 
-impl Engine {
-    fn single_channel(&self, method: &str) -> PyResult<()> {
-        if self.channels.channels() == 1 {
-            Ok(())
-        } else {
-            Err(InputError::new_err(format!(
-                "`{method}` steps one channel, this model has {}: use `step_channels`",
-                self.channels.channels()
-            )))
-        }
-    }
-
-    fn check_dt(dt: f64) -> PyResult<()> {
-        if dt.is_finite() && dt > 0.0 {
-            Ok(())
-        } else {
-            Err(InputError::new_err(format!(
-                "`dt` must be finite and > 0, got {dt}"
-            )))
-        }
-    }
-}
-
 #[pymethods]
 impl Engine {
     #[new]
@@ -120,23 +37,10 @@ impl Engine {
         channels: i64,
         scheme: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        if channels < 1 {
-            return Err(InputError::new_err(format!(
-                "`channels` must be >= 1, got {channels}"
-            )));
-        }
-        let scheme = match scheme.map(|scheme| (scheme, scheme.extract::<String>())) {
-            None => Scheme::Implicit,
-            Some((_, Ok(name))) => parse_scheme(&name)?,
-            Some((scheme, Err(_))) => {
-                return Err(InputError::new_err(format!(
-                    "`scheme` must be 'implicit' or 'explicit', got {}",
-                    scheme.repr()?
-                )))
-            }
-        };
+        let channels = channel_count(channels)?;
+        let scheme = parse_scheme(scheme)?;
         let spec = Spec::extract(params)?;
-        let channels = build(&spec, channels as usize, scheme)?;
+        let channels = build(&spec, channels, scheme)?;
         Ok(Self {
             channels,
             params: params.clone().unbind(),
@@ -164,15 +68,12 @@ impl Engine {
     /// 'implicit' or 'explicit'.
     #[getter]
     fn scheme(&self) -> &'static str {
-        match self.channels.scheme() {
-            Scheme::Implicit => "implicit",
-            Scheme::Explicit => "explicit",
-        }
+        scheme_name(self.channels.scheme())
     }
 
     /// One step of a single-channel model with velocity `v` held over `dt`; returns the force.
     fn step(&mut self, v: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        self.single_channel("step")?;
+        single_channel(self.channels.channels(), "step", "model")?;
         let (v, dt) = (real(v, "v")?, real(dt, "dt")?);
         self.channels
             .step(0, v, dt, false)
@@ -181,7 +82,7 @@ impl Engine {
 
     /// One step of a single-channel model with position input `x`; returns the force.
     fn step_position(&mut self, x: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        self.single_channel("step_position")?;
+        single_channel(self.channels.channels(), "step_position", "model")?;
         let (x, dt) = (real(x, "x")?, real(dt, "dt")?);
         self.channels
             .step(0, x, dt, true)
@@ -196,7 +97,7 @@ impl Engine {
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        Self::check_dt(dt)?;
+        let dt = check_dt(dt)?;
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
         self.channels
@@ -213,15 +114,9 @@ impl Engine {
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        Self::check_dt(dt)?;
+        let dt = check_dt(dt)?;
         let shape = [input.shape()[0], input.shape()[1]];
-        if shape[0] != self.channels.channels() {
-            return Err(InputError::new_err(format!(
-                "input has {} channels, this model has {}",
-                shape[0],
-                self.channels.channels()
-            )));
-        }
+        same_channels(shape[0], self.channels.channels(), "input", "model")?;
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
         let channels = &mut self.channels;

@@ -9,9 +9,9 @@
 use gms_core::{Error, Field, OnlineIdentifier as Identifier, RlsSettings};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyFloat};
 use seq_macro::seq;
 
+use crate::convert::real;
 use crate::engine::MAX_ELEMENTS;
 use crate::errors::{InputError, ParameterError};
 
@@ -148,24 +148,6 @@ fn input_error(error: Error, inputs: [&[f64]; 3]) -> PyErr {
         )),
         other => InputError::new_err(other.to_string()),
     }
-}
-
-/// A Python real number as f64: floats on the fast path, then ints and numpy scalars; bools and
-/// everything else are refused (the same rule as `LeuvenModel.step`).
-#[inline]
-fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
-    if let Ok(float) = value.cast::<PyFloat>() {
-        return Ok(float.value());
-    }
-    if !value.is_instance_of::<PyBool>() {
-        if let Ok(number) = value.extract::<f64>() {
-            return Ok(number);
-        }
-    }
-    Err(InputError::new_err(format!(
-        "`{name}` must be a real number, got {}",
-        value.repr()?
-    )))
 }
 
 /// Recursive least squares on the friction terms that enter linearly.

@@ -1,6 +1,6 @@
 //! A Python `Params` read into plain Rust values, and validated by gms-core.
 
-use gms_core::{Field, Linear, LuGreParams, Params, Stribeck};
+use gms_core::{Field, Linear, LuGreParams, MaxwellSlip, Params, Stribeck};
 use pyo3::prelude::*;
 
 use crate::errors::{parameter_error, ParameterError};
@@ -122,6 +122,17 @@ impl Spec {
     pub fn lugre(&self, sigma0: f64) -> PyResult<LuGreParams> {
         let spring = Linear::new(sigma0).map_err(|error| parameter_error(error, self))?;
         Params::new(self.stribeck()?, self.n, self.sigma1, self.sigma2, spring)
+            .map_err(|error| parameter_error(error, self))
+    }
+
+    /// The validated Maxwell-slip parameters; `W` and `Delta` must have N elements (checked by
+    /// the caller).
+    pub fn maxwell<const N: usize>(&self) -> PyResult<Params<MaxwellSlip<N>>> {
+        let (mut w, mut delta) = ([0.0; N], [0.0; N]);
+        w.copy_from_slice(&self.w);
+        delta.copy_from_slice(&self.big_delta);
+        let elements = MaxwellSlip::new(w, delta).map_err(|error| parameter_error(error, self))?;
+        Params::new(self.stribeck()?, self.n, self.sigma1, self.sigma2, elements)
             .map_err(|error| parameter_error(error, self))
     }
 }

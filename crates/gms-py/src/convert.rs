@@ -1,0 +1,92 @@
+//! Python arguments turned into checked Rust values, shared by every binding class.
+
+use gms_core::Scheme;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat};
+
+use crate::errors::{dt_error, InputError};
+
+/// A Python real number as f64: floats on the fast path (the `step` calls of the control loop),
+/// then ints and numpy scalars; bools and everything else are refused with an `InputError`
+/// naming `name`.
+#[inline]
+pub fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    if let Ok(float) = value.cast::<PyFloat>() {
+        return Ok(float.value());
+    }
+    if !value.is_instance_of::<PyBool>() {
+        if let Ok(number) = value.extract::<f64>() {
+            return Ok(number);
+        }
+    }
+    Err(InputError::new_err(format!(
+        "`{name}` must be a real number, got {}",
+        value.repr()?
+    )))
+}
+
+/// A step size that is finite and > 0.
+#[inline]
+pub fn check_dt(dt: f64) -> PyResult<f64> {
+    if dt.is_finite() && dt > 0.0 {
+        Ok(dt)
+    } else {
+        Err(dt_error(dt))
+    }
+}
+
+/// A channel count of at least 1.
+pub fn channel_count(channels: i64) -> PyResult<usize> {
+    if channels < 1 {
+        return Err(InputError::new_err(format!(
+            "`channels` must be >= 1, got {channels}"
+        )));
+    }
+    Ok(channels as usize)
+}
+
+/// Refuses `method` on an object (a "model", a "system") of other than one channel.
+#[inline]
+pub fn single_channel(channels: usize, method: &str, owner: &str) -> PyResult<()> {
+    if channels == 1 {
+        Ok(())
+    } else {
+        Err(InputError::new_err(format!(
+            "`{method}` steps one channel, this {owner} has {channels}: use `step_channels`"
+        )))
+    }
+}
+
+/// Refuses an input of `got` channels (rows) for an object of `channels`.
+pub fn same_channels(got: usize, channels: usize, input: &str, owner: &str) -> PyResult<()> {
+    if got == channels {
+        Ok(())
+    } else {
+        Err(InputError::new_err(format!(
+            "{input} has {got} channels, this {owner} has {channels}"
+        )))
+    }
+}
+
+/// 'implicit' (also when not given) or 'explicit'.
+pub fn parse_scheme(scheme: Option<&Bound<'_, PyAny>>) -> PyResult<Scheme> {
+    let Some(scheme) = scheme else {
+        return Ok(Scheme::Implicit);
+    };
+    match scheme.extract::<String>().as_deref() {
+        Ok("implicit") => Ok(Scheme::Implicit),
+        Ok("explicit") => Ok(Scheme::Explicit),
+        _ => Err(InputError::new_err(format!(
+            "`scheme` must be 'implicit' or 'explicit', got {}",
+            scheme.repr()?
+        ))),
+    }
+}
+
+/// The name `parse_scheme` takes for `scheme`.
+pub fn scheme_name(scheme: Scheme) -> &'static str {
+    match scheme {
+        Scheme::Implicit => "implicit",
+        Scheme::Explicit => "explicit",
+    }
+}
