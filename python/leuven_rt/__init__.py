@@ -5,6 +5,7 @@
 - :class:`LeuvenModel`: stateful channels stepped sample by sample, with checkpoints.
 - :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
 - :class:`MassSystem`, :func:`simulate_mass`: a mass on the friction model driven by a force.
+- :func:`diagnose`: name the effects a friction model misses in a log (:mod:`leuven_rt.discrepancy`).
 - :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
 - :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
 - :mod:`leuven_rt.reference`: the same discrete step in plain numpy, written as the specification.
@@ -13,6 +14,7 @@
 from . import reference
 from ._core import MAX_ELEMENTS, MAX_ITERATIONS
 from .compensation import Compensator
+from .discrepancy import Diagnosis, diagnose
 from .errors import DivergenceError, InputError, ParameterError
 from .identification import DataError, IdentificationResult, MotionData, identify
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
@@ -26,6 +28,7 @@ __all__ = [
     "MAX_ITERATIONS",
     "Compensator",
     "DataError",
+    "Diagnosis",
     "DivergenceError",
     "IdentificationResult",
     "InputError",
@@ -38,6 +41,7 @@ __all__ = [
     "MotionData",
     "ParameterError",
     "Params",
+    "diagnose",
     "identify",
     "reference",
     "simulate",

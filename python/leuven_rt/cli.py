@@ -21,6 +21,27 @@ def _demo(arguments: argparse.Namespace) -> int:
     print(f"  median |F| over the last second (sliding): {result.sliding_force:.3f} N")
     print(f"  largest |F| overall: {result.peak_force:.3f} N")
     print(f"  figure: {result.figure}")
+    from .discrepancy.story import run_story
+
+    print()
+    print(run_story(Path(arguments.out), progress=True).text())
+    return 0
+
+
+def _diagnose(arguments: argparse.Namespace) -> int:
+    from .discrepancy import diagnose
+    from .errors import InputError
+
+    try:
+        diagnosis = diagnose(arguments.data, arguments.baseline, progress=not arguments.json)
+    except InputError as error:  # bad data or effect names: the message says what and where
+        print(f"leuven-rt diagnose: error: {error}", file=sys.stderr)
+        return 2
+    if arguments.plot:
+        from .discrepancy.plot import plot_diagnosis
+
+        plot_diagnosis(diagnosis, arguments.plot)
+    print(diagnosis.to_json() if arguments.json else diagnosis.story())
     return 0
 
 
@@ -80,7 +101,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``leuven-rt`` command."""
     parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
-    demo = commands.add_parser("demo", help="simulate the presliding-to-sliding scenario, write figures")
+    demo = commands.add_parser(
+        "demo", help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; write figures"
+    )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.set_defaults(run=_demo)
     accuracy = commands.add_parser(
@@ -106,6 +129,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
     identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
     identify.set_defaults(run=_identify)
+    diagnose = commands.add_parser(
+        "diagnose", help="name the catalogue effects a friction model misses in a log, and how much each helps"
+    )
+    diagnose.add_argument("data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file")
+    diagnose.add_argument("--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)")
+    diagnose.add_argument("--json", action="store_true", help="print the JSON report of DESIGN.md §4 (no progress bar)")
+    diagnose.add_argument("--plot", help="write the residual figure to this PNG")
+    diagnose.set_defaults(run=_diagnose)
     control = commands.add_parser(
         "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
     )

@@ -1,0 +1,14 @@
+"""The discrepancy workflow: point it at a log of a machine, and it names what the friction model
+is missing (the effect catalogue of DESIGN.md §3), where, and how much better the model gets.
+
+:mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.model` (fits),
+:mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
+:mod:`.diagnose` (the rounds), :mod:`.report` (JSON of DESIGN.md §4), :mod:`.plot` (figure),
+:mod:`.hidden` (generated data with hidden effects).
+"""
+
+from .diagnose import DEFAULT_BASELINE, diagnose
+from .effects import CATALOGUE, parse_effects
+from .report import Diagnosis, Step
+
+__all__ = ["CATALOGUE", "DEFAULT_BASELINE", "Diagnosis", "Step", "diagnose", "parse_effects"]

@@ -1,0 +1,101 @@
+"""The effect catalogue of DESIGN.md §3: each effect is a set of named regressor columns (a model
+term that can be added, fitted and removed), built from :class:`~.features.Features`.
+
+The model is linear in its coefficients once the shape of the Stribeck curve (Vs, δ) is fixed;
+:mod:`.model` fits that shape by variable projection. Columns that must stay nonnegative (the
+Maxwell-slip weights) are listed per effect.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.polynomial import legendre
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from .features import ELEMENTS, Features
+
+Array = NDArray[np.float64]
+
+#: Degree of the Legendre polynomials in position that scale the friction level along the stroke.
+POSITION_DEGREE = 3
+
+
+@dataclass(frozen=True)
+class Shape:
+    """The Stribeck curve's nonlinear parameters."""
+
+    Vs: float
+    delta: float
+
+
+Columns = Callable[[Features, Collection[str], Shape | None], dict[str, Array]]
+
+
+@dataclass(frozen=True)
+class Effect:
+    name: str
+    missing: str
+    """What is missing from a model without it (DESIGN.md §3)."""
+    columns: Columns
+    nonnegative: tuple[str, ...] = ()
+
+
+def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+    # The levels of the negative direction move by these amounts; a pure level shift is `offset`.
+    out = {"Fc_neg_shift": np.minimum(f.sign, 0.0)}
+    if "viscous" in model:
+        out["sigma2_neg_shift"] = np.minimum(f.v, 0.0)
+    return out
+
+
+def _stribeck(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+    if shape is None:
+        raise ValueError("the Stribeck columns need a shape (Vs, delta)")
+    return {"Fs_minus_Fc": f.sign * np.exp(-np.abs(f.v / shape.Vs) ** shape.delta)}
+
+
+def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+    out = {}
+    for degree in range(1, POSITION_DEGREE + 1):
+        coefficients = np.zeros(degree + 1)
+        coefficients[degree] = 1.0
+        out[f"Fc_P{degree}"] = f.sign * legendre.legval(f.position, coefficients)
+    return out
+
+
+CATALOGUE: dict[str, Effect] = {
+    effect.name: effect
+    for effect in (
+        Effect("coulomb", "a constant friction level Fc·sgn(v)", lambda f, m, s: {"Fc": f.sign}),
+        Effect("viscous", "sigma2·v", lambda f, m, s: {"sigma2": f.v}),
+        Effect("stribeck", "Fs > Fc, Vs, δ", _stribeck),
+        Effect("asymmetry", "levels differ between v > 0 and v < 0", _asymmetry),
+        Effect(
+            "presliding_hysteresis",
+            "the dynamic state z with Maxwell-slip Fh",
+            lambda f, m, s: {f"W{j + 1}": f.bank[:, j] for j in range(f.bank.shape[1])},
+            nonnegative=tuple(f"W{j + 1}" for j in range(ELEMENTS)),
+        ),
+        Effect("position_dependence", "the friction level varies along the stroke", _position),
+        Effect("offset", "a constant force bias in the measurement", lambda f, m, s: {"offset": np.ones_like(f.v)}),
+        Effect("inertia", "the force includes m·ẍ", lambda f, m, s: {"M": f.a}),
+    )
+}
+
+
+def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tuple[str, ...]:
+    """Effect names from a list or a comma-separated string; unknown or repeated names are refused."""
+    items = [name.strip() for name in names.split(",")] if isinstance(names, str) else list(names)
+    items = [name for name in items if name]
+    if any(not isinstance(name, str) for name in items):
+        raise InputError(f"`{argument}` must be effect names (strings), got {items!r}")
+    unknown = [name for name in items if name not in CATALOGUE]
+    if unknown:
+        raise InputError(f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}")
+    if len(set(items)) != len(items):
+        raise InputError(f"`{argument}` repeats effects: got {items}")
+    return tuple(items)

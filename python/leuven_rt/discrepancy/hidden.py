@@ -1,0 +1,93 @@
+"""Generated logs in which catalogue effects are hidden, to test the discrepancy workflow.
+
+The friction comes from the project's simulator (:func:`leuven_rt.simulate_position`) driven by
+the excitation of :mod:`leuven_rt.synthetic`; the effects named in ``truth`` switch its parts on:
+
+- ``coulomb`` is always there (the model needs Fc > 0); ``viscous``: σ2 = :data:`SIGMA2`;
+- ``stribeck``: Fs = 1.5·Fc (otherwise Fs = Fc); ``asymmetry``: the −x levels at 0.7 of the +x
+  ones (Fc_neg, Fs_neg, and σ2 for v < 0);
+- ``presliding_hysteresis``: Maxwell-slip elements up to a 10 µm presliding range; without it
+  the elements end at :data:`STIFF_RANGE`, below the encoder's resolution, so presliding is
+  invisible in the data;
+- the other effects are added to the simulated friction: ``offset`` (a bias), ``inertia``
+  (m·ẍ of the true motion), ``position_dependence`` (the level changes linearly along the
+  stroke), and, outside the catalogue, ``drift`` (the level grows linearly over time).
+
+The log is the truth plus white force noise, the position quantized; ``with_velocity`` adds a
+``v`` column (the true velocity), otherwise only x is given.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..identification.data import MotionData
+from ..params import Params
+from ..simulation import simulate_position
+from ..synthetic import excitation
+from .effects import parse_effects
+
+Array = NDArray[np.float64]
+
+FC = 1.0  # N
+SIGMA2 = 10.0  # N·s/m
+VS = 1e-3  # m/s
+PRESLIDING_RANGE = 1e-5  # m
+STIFF_RANGE = 2e-10  # m
+ASYMMETRY = 0.7
+OFFSET = 0.3  # N
+MASS = 0.05  # kg
+POSITION_SLOPE = 0.25  # N across half the stroke
+DRIFT = 0.4  # N over the record
+
+
+@dataclass(frozen=True, eq=False)
+class HiddenData:
+    data: MotionData
+    truth: tuple[str, ...]
+    drift: bool
+    force_true: Array
+    noise_std: float
+
+
+def make_hidden(
+    truth: Collection[str], *, drift: bool = False, dt: float = 4e-4, noise_std: float = 0.02,
+    quantization: float = 1e-9, with_velocity: bool = False, seed: int = 0, elements: int = 6,
+) -> HiddenData:  # fmt: skip
+    effects = parse_effects(list(truth), "truth")
+    rng = np.random.default_rng(seed)
+    x_true = excitation(dt, PRESLIDING_RANGE, VS, rng)
+    v_true = np.gradient(x_true, dt)
+    asymmetric = "asymmetry" in effects
+    span = PRESLIDING_RANGE if "presliding_hysteresis" in effects else STIFF_RANGE
+    index = np.arange(1, elements + 1)
+    fs = 1.5 * FC if "stribeck" in effects else FC
+    weights = (elements + 1 - index) / np.sum(index) * fs * 1.02
+    sigma2 = SIGMA2 if "viscous" in effects else 0.0
+    params = Params(
+        Fc=FC, Fs=fs, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=sigma2,
+        W=tuple(weights), Delta=tuple(span * index / elements),
+        **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs} if asymmetric else {}),
+    )  # fmt: skip
+    force = simulate_position(params, x_true, dt)
+    direction = np.sign(v_true)
+    if asymmetric:
+        force += (ASYMMETRY - 1.0) * sigma2 * np.minimum(v_true, 0.0)
+    if "offset" in effects:
+        force += OFFSET
+    if "inertia" in effects:
+        force += MASS * np.gradient(v_true, dt)
+    if "position_dependence" in effects:
+        middle, half = 0.5 * (x_true.max() + x_true.min()), 0.5 * np.ptp(x_true)
+        force += POSITION_SLOPE * direction * (x_true - middle) / half
+    if drift:
+        force += DRIFT * direction * np.linspace(0.0, 1.0, x_true.size)
+    measured = force + rng.normal(0.0, noise_std, force.size)
+    x = np.round(x_true / quantization) * quantization if quantization > 0 else x_true.copy()
+    t = np.arange(x.size) * dt
+    data = MotionData(t, x, measured, v_true if with_velocity else None, source=f"hidden({','.join(effects)})")
+    return HiddenData(data, effects, drift, force, noise_std)

@@ -1,0 +1,103 @@
+"""A friction model as a set of catalogue effects, fitted by linear least squares on chosen rows.
+
+The coefficients come from the identification's :func:`fit_linear` (nonnegative where the
+effect asks). With ``stribeck`` in the model, its shape (Vs, δ) is fitted by variable
+projection: for each trial shape the linear coefficients are solved exactly (plain least
+squares), and Nelder–Mead moves (log Vs, δ), started from the best of a grid over the speeds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import minimize
+
+from ..identification.regression import fit_linear
+from .effects import CATALOGUE, Shape
+from .features import Features
+
+Array = NDArray[np.float64]
+Rows = NDArray[np.bool_]
+
+#: Bounds of the Stribeck exponent δ searched.
+DELTA_RANGE = (0.5, 4.0)
+
+
+@dataclass(frozen=True, eq=False)
+class ModelFit:
+    effects: tuple[str, ...]
+    coefficients: dict[str, float]
+    groups: dict[str, tuple[str, ...]]
+    """The coefficient names of every effect."""
+    shape: Shape | None
+
+    def predict(self, features: Features) -> Array:
+        columns = design(self.effects, features, self.shape)
+        prediction = np.zeros_like(features.force)
+        for name, column in columns.items():
+            prediction += self.coefficients[name] * column
+        return prediction
+
+    def params(self, effect: str) -> dict[str, float]:
+        """The fitted values that belong to ``effect``."""
+        out = {name: self.coefficients[name] for name in self.groups[effect]}
+        if effect == "stribeck" and self.shape is not None:
+            out.update(Vs=self.shape.Vs, delta=self.shape.delta)
+        return out
+
+    def to_dict(self) -> dict[str, object]:
+        return {"effects": list(self.effects), "params": {name: self.params(name) for name in self.effects}}
+
+
+def design(effects: Sequence[str], features: Features, shape: Shape | None) -> dict[str, Array]:
+    columns: dict[str, Array] = {}
+    for name in effects:
+        columns.update(CATALOGUE[name].columns(features, effects, shape))
+    return columns
+
+
+
+
+def fit_model(effects: Sequence[str], features: Features, rows: Rows) -> ModelFit:
+    """Coefficients (and the Stribeck shape) of ``effects`` fitted on ``rows``."""
+    effects = tuple(effects)
+    shape = _fit_shape(effects, features, rows) if "stribeck" in effects else None
+    groups = {name: tuple(CATALOGUE[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects}
+    if not effects:
+        return ModelFit(effects, {}, groups, shape)
+    columns = design(effects, features, shape)
+    nonnegative = [column for name in effects for column in CATALOGUE[name].nonnegative]
+    fit = fit_linear({key: value[rows] for key, value in columns.items()}, features.force[rows],
+                     nonnegative or False)  # fmt: skip
+    return ModelFit(effects, fit.coefficients, groups, shape)
+
+
+def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shape:
+    # Vs is searched within the speeds the data visits (moving samples only).
+    speeds = np.abs(features.v[rows & (features.travel > features.scales.deflections[-1])])
+    high = float(np.percentile(speeds, 95))
+    low = max(float(np.percentile(speeds, 2)), 1e-3 * high)
+
+    bounds = np.log([low, high])
+    # Only the Stribeck column moves with the shape: the normal equations of the other columns
+    # are formed once, and each trial adds one row and column (plain least squares, no bounds).
+    others = [name for name in effects if name != "stribeck"]
+    matrix = np.column_stack([c[rows] for c in design(others, features, None).values()] or [np.zeros(int(rows.sum()))])
+    target, sign, speed = features.force[rows], features.sign[rows], np.abs(features.v[rows])
+    gram, moment = matrix.T @ matrix, matrix.T @ target
+
+    def cost(p: Array) -> float:
+        column = sign * np.exp(-((speed / np.exp(np.clip(p[0], *bounds))) ** np.clip(p[1], *DELTA_RANGE)))
+        cross = matrix.T @ column
+        system = np.block([[gram, cross[:, None]], [cross[None, :], np.array([[column @ column]])]])
+        right = np.append(moment, column @ target)
+        theta = np.linalg.lstsq(system, right, rcond=None)[0]
+        return float(target @ target - theta @ right)  # the residual sum of squares
+
+    grid = [np.array([np.log(vs), delta]) for vs in np.geomspace(low, high, 8) for delta in (1.0, 2.0)]
+    start = min(grid, key=cost)
+    result = minimize(cost, start, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-9, "maxfev": 80})
+    return Shape(float(np.exp(np.clip(result.x[0], *bounds))), float(np.clip(result.x[1], *DELTA_RANGE)))

@@ -1,0 +1,50 @@
+"""The ``--plot`` figure: residual over time with the regions where it was largest marked, and
+residual against velocity, position and displacement since the last reversal, for the baseline
+and after each step."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .localise import region_masks  # noqa: E402
+from .report import Diagnosis  # noqa: E402
+
+
+def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    f = diagnosis.features
+    usable = f.usable
+    labels = ["baseline"] + [f"+ {step.effect}" for step in diagnosis.steps]
+    figure, axes = plt.subplots(2, 2, figsize=(13, 8))
+    by_time, by_velocity, by_position, by_travel = axes.ravel()
+    worst = max(diagnosis.regions_before, key=lambda region: region.rms).name
+    marked = region_masks(f)[worst]
+    by_time.fill_between(f.t, 0, 1, where=marked, transform=by_time.get_xaxis_transform(), color="orange",
+                         alpha=0.15, label=f"largest baseline residual: {worst}")  # fmt: skip
+    for label, residual in zip(labels, diagnosis.residuals):
+        by_time.plot(f.t[usable], residual[usable], linewidth=0.5, label=label)
+        by_velocity.plot(f.v[usable], residual[usable], ".", markersize=1, label=label)
+        by_position.plot(f.x[usable], residual[usable], ".", markersize=1, label=label)
+        by_travel.plot(np.maximum(f.travel[usable], 1e-12), residual[usable], ".", markersize=1, label=label)
+    by_time.set(xlabel="time t [s]", ylabel="residual f − model [N]", title="Residual over time")
+    by_velocity.set(xlabel="velocity v [m/s]", ylabel="residual [N]", title="Residual vs velocity")
+    by_velocity.set_xscale("symlog", linthresh=max(float(np.percentile(np.abs(f.v[usable]), 10)), 1e-12))
+    by_position.set(xlabel="position x [m]", ylabel="residual [N]", title="Residual vs position")
+    by_travel.set(xlabel="displacement since reversal [m]", ylabel="residual [N]", xscale="log",
+                  title="Residual vs displacement since reversal")  # fmt: skip
+    for axis in axes.ravel():
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, markerscale=8, loc="upper right")
+    figure.suptitle(f"diagnose: rms {diagnosis.rms_before:.3g} N -> {diagnosis.rms_after:.3g} N "
+                    f"(noise floor {diagnosis.noise_std:.3g} N)")  # fmt: skip
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
