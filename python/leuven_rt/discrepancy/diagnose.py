@@ -15,10 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 from tqdm import tqdm
 
-from scipy.io.matlab import MatReadError
-
 from ..identification.data import DataLike, as_motion_data
-from ..identification.errors import DataError
 from ..identification.report import noise_floor
 from .effects import CATALOGUE, parse_effects
 from .features import compute_features
@@ -43,10 +40,7 @@ def diagnose(
     ``progress``: a tqdm progress bar on stderr. Bad input raises :class:`InputError`.
     """
     effects = parse_effects(baseline)
-    try:
-        record = as_motion_data(data)
-    except MatReadError as error:  # a truncated or foreign .mat file: identification lets it through
-        raise DataError(f"cannot read {data} as a MATLAB .mat file: {error}") from None
+    record = as_motion_data(data)
     features = compute_features(record)
     folds = blocks(features)
     noise = noise_floor(record.f)

@@ -208,7 +208,8 @@ def load_emps(path: Path) -> dict[str, Array]:
     """The EMPS benchmark's MATLAB file: f = gtau·vir [N], x = qm [m], t [s]."""
     try:
         content = scipy.io.loadmat(path)
-    except (OSError, ValueError, NotImplementedError) as error:
+    # scipy raises NotImplementedError for v7.3 (HDF5) files and MatReadError for broken ones.
+    except (OSError, ValueError, NotImplementedError, scipy.io.matlab.MatReadError) as error:
         raise DataError(f"cannot read {path} as a MATLAB .mat file: {error}") from None
     missing = [name for name in ("t", "qm", "vir", "gtau") if name not in content]
     if missing:
