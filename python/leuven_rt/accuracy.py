@@ -101,12 +101,9 @@ def _compare(
     # An unstable run can stay finite yet so large that the difference overflows: diverged too.
     with np.errstate(over="ignore", invalid="ignore"):
         error = forces - truth
-    largest = float(np.max(np.abs(error)))
-    if not math.isfinite(largest):
+    rms, largest = _rms(error)
+    if math.isinf(rms):
         return diverged
-    # Scaled by the largest error so that an unstable but still finite run (explicit at 100 Hz
-    # reaches ~1e65 N) does not overflow in the square.
-    rms = largest * float(np.sqrt(np.mean((error / largest) ** 2))) if largest > 0 else 0.0
     return AccuracyRow(rate, scheme, rms, rms / params.Fs, largest)
 
 
@@ -233,7 +230,11 @@ def applied_force(times: NDArray[np.float64], amplitude: float = FORCE_AMPLITUDE
 
 
 def _rms(error: NDArray[np.float64]) -> tuple[float, float]:
-    """(RMS, max) of ``error``, scaled against overflow; (inf, inf) if not finite."""
+    """(RMS, max) of ``error``, scaled against overflow; (inf, inf) if not finite.
+
+    Scaled by the largest error so that an unstable but still finite run (explicit at 100 Hz
+    reaches ~1e65 N) does not overflow in the square.
+    """
     largest = float(np.max(np.abs(error)))
     if not math.isfinite(largest):
         return math.inf, math.inf

@@ -35,10 +35,10 @@
 //! σ1·|v|·|1 − |Fh/g_new(v)|ⁿ|. Both are zero at rest and are the new model's answer to the same
 //! motion, not an artefact of the swap.
 
+use crate::checks::positive;
 use crate::error::{Error, Field};
 use crate::hysteresis::Hysteresis;
 use crate::model::{Params, Scheme, State};
-use crate::stribeck::positive;
 
 /// What the compensator's input is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

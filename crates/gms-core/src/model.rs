@@ -5,11 +5,12 @@
 //! (`Implicit`, the default) or forward Euler (`Explicit`); the memory of the hysteresis is
 //! committed at the new z; the output is Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2·vₖ.
 
+use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
 use crate::math::abs_pow;
 use crate::solver::{Residual, Solution};
-use crate::stribeck::{non_negative, positive, Stribeck};
+use crate::stribeck::Stribeck;
 
 /// How the state equation is advanced over one step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -121,7 +122,7 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
-        check_sample(v, Field::v)?;
+        finite(v, Field::v)?;
         self.advance(state, v, dt, scheme)
     }
 
@@ -134,7 +135,7 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
-        check_sample(x, Field::x)?;
+        finite(x, Field::x)?;
         self.advance_position(state, x, dt, scheme)
     }
 
@@ -251,14 +252,6 @@ fn check_dt(dt: f64) -> Result<(), Error> {
     positive(dt, Field::dt).map(|_| ())
 }
 
-fn check_sample(value: f64, field: Field) -> Result<(), Error> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::NotFinite { field, index: 0 })
-    }
-}
-
 fn check_block(input: &[f64], field: Field, dt: f64, out: &[f64]) -> Result<(), Error> {
     if out.len() != input.len() {
         return Err(Error::LengthMismatch {
@@ -267,10 +260,7 @@ fn check_block(input: &[f64], field: Field, dt: f64, out: &[f64]) -> Result<(), 
         });
     }
     check_dt(dt)?;
-    match input.iter().position(|value| !value.is_finite()) {
-        Some(index) => Err(Error::NotFinite { field, index }),
-        None => Ok(()),
-    }
+    all_finite(input, field)
 }
 
 /// Steps through `input`; on the first error, puts the state back as it was and names the sample.

@@ -1,5 +1,6 @@
 //! The Stribeck curve: the constant-velocity friction level g(v) and its signed form s(v) (eq. 3).
 
+use crate::checks::positive;
 use crate::error::{Error, Field};
 use crate::math::abs_pow;
 
@@ -120,24 +121,6 @@ fn negligible_above(fc: f64, fs: f64) -> f64 {
         return -1.0;
     }
     libm::log((fs - fc) / fc) + 54.0 * core::f64::consts::LN_2 + 1.0
-}
-
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(value: f64, field: Field) -> Result<f64, Error> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::NotPositive(field))
-    }
-}
-
-/// Checks that `value` is finite and non-negative.
-pub(crate) fn non_negative(value: f64, field: Field) -> Result<f64, Error> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::Negative(field))
-    }
 }
 
 #[cfg(test)]

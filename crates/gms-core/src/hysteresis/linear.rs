@@ -1,8 +1,8 @@
 //! Fh = σ0·z: a single spring that never slips, which makes the model LuGre when n = 1.
 
 use super::{Hysteresis, Trial};
+use crate::checks::positive;
 use crate::error::{Error, Field};
-use crate::stribeck::positive;
 
 /// Linear hysteresis force of stiffness `sigma0` [N/m].
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,5 +1,6 @@
 //! Online identification of the friction terms that enter linearly, sample by sample.
 
+use crate::checks::finite;
 use crate::error::{Error, Field};
 
 use super::regressor::SlipRegressor;
@@ -68,9 +69,7 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
     /// elements included) as it was. Never panics, never allocates.
     pub fn update(&mut self, x: f64, v: f64, f: f64) -> Result<f64, Error> {
         for (value, field) in [(x, Field::x), (v, Field::v), (f, Field::f)] {
-            if !value.is_finite() {
-                return Err(Error::NotFinite { field, index: 0 });
-            }
+            finite(value, field)?;
         }
         let mut regressor = self.regressor;
         let phi = regressor_at(&mut regressor, x, v);
@@ -134,9 +133,7 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
     /// use, with the elements moved from where the last update left them; nothing is written.
     pub fn regressor(&self, x: f64, v: f64) -> Result<[f64; P], Error> {
         for (value, field) in [(x, Field::x), (v, Field::v)] {
-            if !value.is_finite() {
-                return Err(Error::NotFinite { field, index: 0 });
-            }
+            finite(value, field)?;
         }
         let mut elements = self.regressor;
         Ok(regressor_at(&mut elements, x, v))

@@ -29,6 +29,7 @@
 //! - A non-finite input is rejected before anything is computed; an update that would overflow
 //!   (finite inputs of absurd size) is rejected too. Either way the state is left as it was.
 
+use crate::checks::finite;
 use nalgebra::{SMatrix, SVector};
 
 use crate::error::{Error, Field};
@@ -156,12 +157,7 @@ impl<const P: usize> Rls<P> {
                 index,
             });
         }
-        if !measured.is_finite() {
-            return Err(Error::NotFinite {
-                field: Field::f,
-                index: 0,
-            });
-        }
+        finite(measured, Field::f)?;
         let phi = SVector::from(*regressor);
         let error = measured - phi.dot(&self.estimate);
         if !error.is_finite() {

@@ -40,10 +40,10 @@
 
 mod coupled;
 
+use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::Hysteresis;
 use crate::model::{Params, Scheme, State};
-use crate::stribeck::{non_negative, positive};
 use coupled::Coupled;
 
 /// The spring between the mass and its far end a(t) = a₀ + drive_speed·t.
@@ -178,12 +178,7 @@ impl<H: Hysteresis> MassSystem<H> {
         scheme: Scheme,
     ) -> Result<MassSample, Error> {
         positive(dt, Field::dt)?;
-        if !u.is_finite() {
-            return Err(Error::NotFinite {
-                field: Field::u,
-                index: 0,
-            });
-        }
+        finite(u, Field::u)?;
         self.advance(state, u, dt, scheme)
     }
 
@@ -210,12 +205,7 @@ impl<H: Hysteresis> MassSystem<H> {
             }
         }
         positive(dt, Field::dt)?;
-        if let Some(index) = u.iter().position(|value| !value.is_finite()) {
-            return Err(Error::NotFinite {
-                field: Field::u,
-                index,
-            });
-        }
+        all_finite(u, Field::u)?;
         let before = *state;
         for (index, &force) in u.iter().enumerate() {
             match self.advance(state, force, dt, scheme) {
