@@ -18,7 +18,7 @@ from .discrepancy import Diagnosis, diagnose
 from .errors import DivergenceError, InputError, ParameterError
 from .identification import DataError, IdentificationResult, MotionData, identify
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
-from .model import LeuvenModel, ModelState
+from .model import LeuvenModel, ModelState, Trace
 from .online import OnlineIdentifier
 from .params import Params
 from .simulation import simulate, simulate_position
@@ -41,6 +41,7 @@ __all__ = [
     "MotionData",
     "ParameterError",
     "Params",
+    "Trace",
     "diagnose",
     "identify",
     "reference",

@@ -29,6 +29,16 @@ class ModelState:
     """Whether a channel has seen a position-input step since it was relaxed, shape (B,)."""
 
 
+@dataclass(frozen=True, eq=False)
+class Trace:
+    """A run of one channel over positions, with the state the elements are driven by."""
+
+    force: NDArray[np.float64]
+    """Friction force after every sample [N]."""
+    z: NDArray[np.float64]
+    """Deflection z of the state equation after every sample [m]."""
+
+
 class LeuvenModel(_core.Engine):
     """``channels`` channels of the model with parameters ``params``, stepped in Rust.
 
@@ -61,6 +71,17 @@ class LeuvenModel(_core.Engine):
     def run_position(self, x: ArrayLike, dt: float) -> NDArray[np.float64]:
         """Continues every channel over positions ``x``: (T,) for one channel or (B, T)."""
         return self._run_signal(x, "x", dt)
+
+    def trace_position(self, x: ArrayLike, dt: float) -> Trace:
+        """Continues the single channel over positions ``x`` of shape (T,), recording the
+        deflection z after every sample as well as the force."""
+        if self.channels != 1:
+            raise InputError(f"`trace_position` runs one channel, this model has {self.channels}")
+        array, one_dimensional = as_channel_signal(x, "x", 1)
+        if not one_dimensional:
+            raise InputError(f"`x` must have shape (T,) for `trace_position`, got {np.shape(x)}")
+        force, z = self._run_position_deflection(np.ascontiguousarray(array[0]), check_dt(dt))
+        return Trace(force, z)
 
     def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> NDArray[np.float64]:
         array, one_dimensional = as_channel_signal(signal, name, self.channels)

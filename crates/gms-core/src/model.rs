@@ -171,6 +171,29 @@ impl<H: Hysteresis> Params<H> {
         })
     }
 
+    /// [`Params::simulate_position`], also writing the deflection z after every sample into
+    /// `z` (same length): the state the hysteresis elements are driven by, for analysis.
+    pub fn simulate_position_deflection(
+        &self,
+        state: &mut State<H::Memory>,
+        x: &[f64],
+        dt: f64,
+        scheme: Scheme,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error> {
+        check_block(x, Field::x, dt, out)?;
+        check_block(x, Field::x, dt, z)?;
+        let mut deflections = z.iter_mut();
+        run_block(state, x, out, |state, x| {
+            let force = self.advance_position(state, x, dt, scheme)?;
+            if let Some(slot) = deflections.next() {
+                *slot = state.z;
+            }
+            Ok(force)
+        })
+    }
+
     /// The implicit step's root for this state and input, without committing anything.
     ///
     /// Exposed so that the solver's accuracy and iteration count can be checked from outside.

@@ -33,6 +33,14 @@ pub trait Engine: Send + Sync {
         position: bool,
         out: &mut [f64],
     ) -> Result<(), (usize, Error)>;
+    /// Runs channel 0 over positions `x`, also writing the deflection z after every sample.
+    fn run_position_deflection(
+        &mut self,
+        x: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error>;
     fn reset(&mut self);
     /// Copies the states out: z (B), memory (B × N), last position (B) and whether it exists.
     fn read_state(
@@ -131,6 +139,17 @@ where
                 .map(run_one)
                 .collect()
         })
+    }
+
+    fn run_position_deflection(
+        &mut self,
+        x: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error> {
+        self.params
+            .simulate_position_deflection(&mut self.states[0], x, dt, self.scheme, out, z)
     }
 
     fn reset(&mut self) {

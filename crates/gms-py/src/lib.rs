@@ -12,6 +12,7 @@ mod errors;
 mod mechanics;
 mod model;
 mod online;
+mod slip;
 mod spec;
 
 use pyo3::prelude::*;
@@ -25,6 +26,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ELEMENTS", engine::MAX_ELEMENTS)?;
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(spec::check_params, m)?)?;
+    m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
     m.add_class::<model::Engine>()?;
     m.add_class::<mechanics::MassEngine>()?;
     m.add_class::<compensator::CompensatorEngine>()?;

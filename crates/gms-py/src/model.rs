@@ -21,6 +21,9 @@ type StateArrays<'py> = (
     Bound<'py, PyArray1<bool>>,
 );
 
+/// The forces and the deflection z of a traced run.
+type TraceArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// Channels of one friction model sharing one parameter set.
 #[pyclass(subclass, module = "leuven_rt._core")]
 pub struct Engine {
@@ -127,6 +130,29 @@ impl Engine {
                 block_error(error, &input[channel.unwrap_or(0) * shape[1]..], 0, channel)
             })?;
         PyArray1::from_vec(py, out).reshape(shape)
+    }
+
+    /// Runs the single channel over positions `x`, shape (T,), with the GIL released; returns
+    /// the forces and the deflection z after every sample.
+    fn _run_position_deflection<'py>(
+        &mut self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'py, f64>,
+        dt: f64,
+    ) -> PyResult<TraceArrays<'py>> {
+        if self.channels.channels() != 1 {
+            return Err(InputError::new_err(format!(
+                "`trace_position` runs one channel, this model has {}",
+                self.channels.channels()
+            )));
+        }
+        let dt = check_dt(dt)?;
+        let x = x.as_slice()?;
+        let (mut out, mut z) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+        let channels = &mut self.channels;
+        py.detach(|| channels.run_position_deflection(x, dt, &mut out, &mut z))
+            .map_err(|error| block_error(error, x, 0, None))?;
+        Ok((PyArray1::from_vec(py, out), PyArray1::from_vec(py, z)))
     }
 
     /// Relaxes every channel: z = 0, elements undeflected, no previous position.

@@ -136,3 +136,38 @@ pub extern "C" fn nostd_check_mass(dt: f64) -> f64 {
     }
     state.x
 }
+
+/// The analysis block calls: a position run that records z, and Maxwell-slip responses along a
+/// path; returns the sum of everything they wrote, or NaN if anything was rejected.
+#[no_mangle]
+pub extern "C" fn nostd_check_traces(dt: f64) -> f64 {
+    let Ok(stribeck) = Stribeck::new(1.0, 1.5, 1e-3, 2.0) else {
+        return f64::NAN;
+    };
+    let Ok(elements) = MaxwellSlip::new([0.8, 0.8], [1e-6, 2e-6]) else {
+        return f64::NAN;
+    };
+    let Ok(params) = LeuvenParams::new(stribeck, 2.0, 0.0, 0.0, elements) else {
+        return f64::NAN;
+    };
+    let x = [0.0, 1e-6, 3e-6, 2e-6, -1e-6, 0.0];
+    let (mut force, mut z, mut responses) = ([0.0; 6], [0.0; 6], [0.0; 12]);
+    let mut state = params.relaxed_state();
+    let Ok(()) = params.simulate_position_deflection(
+        &mut state,
+        &x,
+        dt,
+        Scheme::Implicit,
+        &mut force,
+        &mut z,
+    ) else {
+        return f64::NAN;
+    };
+    let Ok(mut regressor) = gms_core::SlipRegressor::new([1e-6, 2e-6]) else {
+        return f64::NAN;
+    };
+    if regressor.responses(&x, &mut responses).is_err() {
+        return f64::NAN;
+    }
+    force.iter().chain(&z).chain(&responses).sum()
+}

@@ -21,7 +21,7 @@ from .features import ELEMENTS, Features
 Array = NDArray[np.float64]
 
 #: Degree of the Legendre polynomials in position that scale the friction level along the stroke.
-POSITION_DEGREE = 3
+POSITION_DEGREE = 2
 
 
 @dataclass(frozen=True)
@@ -45,10 +45,13 @@ class Effect:
 
 
 def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
-    # The levels of the negative direction move by these amounts; a pure level shift is `offset`.
+    # The levels of the negative direction move by these amounts, each level the model has; a
+    # pure level shift (the same in both directions) is `offset`.
     out = {"Fc_neg_shift": np.minimum(f.sign, 0.0)}
     if "viscous" in model:
         out["sigma2_neg_shift"] = np.minimum(f.v, 0.0)
+    if "stribeck" in model and shape is not None:
+        out["Fs_neg_shift"] = np.minimum(_stribeck(f, model, shape)["Fs_minus_Fc"], 0.0)
     return out
 
 

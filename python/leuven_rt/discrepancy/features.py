@@ -3,7 +3,12 @@
 Velocity and acceleration come from the identification's zero-phase derivatives; the sign of
 the velocity is the direction of motion read from the position with a play of ± the position
 noise (a Maxwell-slip element of that width), so that it flips exactly where the position turns
-and noise does not flip it; the presliding memory is a bank of Maxwell-slip
+and noise does not flip it. Where the position is limited by its quantization rather than by
+noise, a slow turn can stay inside one step for several samples, and friction reverses on a
+sample where the recorded position does not change: between a step one way and the next step
+the other way, the turn is placed where the zero-phase filtered position first falls back from
+its extreme (a single sample of late flip costs (2·Fc)², hundreds of times the noise variance).
+The presliding memory is a bank of Maxwell-slip
 elements driven by the filtered position (each element's deflection clipped to ±Δⱼ, Δⱼ
 log-spaced from :data:`SMALLEST_DEFLECTION` of the stroke (well above the encoder's resolution,
 so that the bank does not turn into a second Coulomb term) to a hundredth of the stroke): any nonnegative
@@ -20,11 +25,16 @@ from numpy.typing import NDArray
 
 from ..identification.data import MotionData, estimate_derivatives
 from ..identification.motion import find_segments
+from ..identification.presliding import element_deflections
 
 Array = NDArray[np.float64]
 
 #: Elements of the Maxwell-slip bank.
-ELEMENTS = 8
+ELEMENTS = 12
+#: Cutoff of the zero-phase derivative filter, as a share of the sampling rate: twice the
+#: identification's default, because the Stribeck curve is steep in v and a velocity smoothed
+#: at the plateaus' ramps biases it, while the quantization noise it lets through is small.
+CUTOFF = 0.1
 #: Largest break deflection of the bank, as a share of the stroke.
 LARGEST_DEFLECTION = 1e-2
 #: Smallest break deflection of the bank, as a share of the stroke (and at least ten position
@@ -68,21 +78,30 @@ class Features:
     dt: float
 
 
-def maxwell_bank(x: Array, deflections: Array) -> Array:
-    """Normalised deflections of elements driven by ``x``, all relaxed at the start."""
-    state = np.zeros(deflections.size)
-    out = np.empty((x.size, deflections.size))
-    steps = np.diff(x, prepend=x[0])
-    for k, step in enumerate(steps):  # sequential memory: a loop in time, vectorised over elements
-        state = np.clip(state + step, -deflections, deflections)
-        out[k] = state
-    return out / deflections
+def direction_of_motion(data: MotionData, filtered: Array, play: float) -> Array:
+    """sgn(v) in [−1, 1] from the recorded position (and its zero-phase ``filtered`` version, for
+    the turns inside one quantization step when the position is quantization-limited)."""
+    raw = data.x
+    sign = element_deflections(raw, np.array([play]))[:, 0]
+    resolution, noise = position_spread(data, filtered)
+    if noise > 0.5 * resolution:
+        return sign
+    moves = np.flatnonzero(np.diff(raw)) + 1
+    ways = np.sign(raw[moves] - raw[moves - 1])
+    for before, after, old, new in zip(moves[:-1], moves[1:], ways[:-1], ways[1:]):
+        if old == new or after - before < 2:
+            continue
+        path = old * filtered[before:after]  # grows while the motion goes the old way
+        retreat = np.flatnonzero(path[1:] < np.maximum.accumulate(path)[:-1])
+        if retreat.size:
+            sign[before + 1 + retreat[0] : after] = new
+    return sign
 
 
 def compute_features(data: MotionData, scales: Scales | None = None) -> Features:
     """The signals of ``data``. ``scales`` (lengths) taken from another record (the one a model was fitted on)
     build the columns of the model fitted there; by default they are measured on ``data``."""
-    derivatives = estimate_derivatives(data)
+    derivatives = estimate_derivatives(data, CUTOFF / data.dt)
     x, v = derivatives.x, derivatives.v
     if scales is None:
         scales = measure_scales(data, x)
@@ -93,18 +112,24 @@ def compute_features(data: MotionData, scales: Scales | None = None) -> Features
     usable[data.samples - edge :] = False
     return Features(
         t=data.t, force=data.f, x=x, v=v, a=derivatives.a,
-        sign=maxwell_bank(data.x, np.array([scales.play]))[:, 0],
-        position=(x - scales.middle) / scales.half_stroke, bank=maxwell_bank(x, scales.deflections),
+        sign=direction_of_motion(data, x, scales.play),
+        position=(x - scales.middle) / scales.half_stroke, bank=element_deflections(x, scales.deflections),
         scales=scales, travel=segments.travel, usable=usable, dt=data.dt,
     )  # fmt: skip
 
 
-def measure_scales(data: MotionData, x: Array) -> Scales:
-    stroke = float(np.ptp(x))
+def position_spread(data: MotionData, x: Array) -> tuple[float, float]:
+    """The position's quantization step and its noise (at least what quantization alone gives)."""
     steps = np.abs(np.diff(data.x))
     resolution = float(np.min(steps[steps > 0]))
     deviation = data.x - x  # robust spread: the filter's misses at sharp turns do not count
-    position_noise = max(1.4826 * float(np.median(np.abs(deviation - np.median(deviation)))), 0.3 * resolution)
+    noise = 1.4826 * float(np.median(np.abs(deviation - np.median(deviation))))
+    return resolution, max(noise, 0.3 * resolution)
+
+
+def measure_scales(data: MotionData, x: Array) -> Scales:
+    stroke = float(np.ptp(x))
+    resolution, position_noise = position_spread(data, x)
     smallest = max(10.0 * resolution, SMALLEST_DEFLECTION * stroke)
     largest = max(LARGEST_DEFLECTION * stroke, 10.0 * smallest)
     deflections = np.geomspace(smallest, largest, ELEMENTS)

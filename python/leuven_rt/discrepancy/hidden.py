@@ -37,7 +37,7 @@ FC = 1.0  # N
 SIGMA2 = 10.0  # N·s/m
 VS = 1e-3  # m/s
 PRESLIDING_RANGE = 1e-5  # m
-STIFF_RANGE = 2e-10  # m
+STIFF_RANGE = 1e-12  # m
 ASYMMETRY = 0.7
 OFFSET = 0.3  # N
 MASS = 0.05  # kg
@@ -52,6 +52,10 @@ class HiddenData:
     drift: bool
     force_true: Array
     noise_std: float
+    x_true: Array
+    """The position before quantization [m]."""
+    direction: Array
+    """The direction of motion the friction's Coulomb part follows, in [−1, 1]."""
 
 
 def make_hidden(
@@ -74,7 +78,11 @@ def make_hidden(
         **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs} if asymmetric else {}),
     )  # fmt: skip
     force = simulate_position(params, x_true, dt)
-    direction = np.sign(v_true)
+    # The direction the added terms follow is that of a unit Coulomb level (one element below the
+    # encoder's resolution) through the same simulator, so that they flip on the same sample as
+    # the friction's Coulomb part; position dependence changes that level, not the presliding.
+    unit = Params(Fc=1.0, Fs=1.0, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=0.0, W=(1.02,), Delta=(STIFF_RANGE,))
+    direction = simulate_position(unit, x_true, dt)
     if asymmetric:
         force += (ASYMMETRY - 1.0) * sigma2 * np.minimum(v_true, 0.0)
     if "offset" in effects:
@@ -90,4 +98,4 @@ def make_hidden(
     x = np.round(x_true / quantization) * quantization if quantization > 0 else x_true.copy()
     t = np.arange(x.size) * dt
     data = MotionData(t, x, measured, v_true if with_velocity else None, source=f"hidden({','.join(effects)})")
-    return HiddenData(data, effects, drift, force, noise_std)
+    return HiddenData(data, effects, drift, force, noise_std, x_true, direction)

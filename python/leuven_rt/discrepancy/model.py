@@ -4,6 +4,9 @@ The coefficients come from the identification's :func:`fit_linear` (nonnegative 
 effect asks). With ``stribeck`` in the model, its shape (Vs, δ) is fitted by variable
 projection: for each trial shape the linear coefficients are solved exactly (plain least
 squares), and Nelder–Mead moves (log Vs, δ), started from the best of a grid over the speeds.
+With ``presliding_hysteresis``, the bank's drive (:mod:`.drive`) is fitted by fixed-point
+iteration for each exponent n tried: the weights fitted on the bank driven by z give the z of
+the next pass, starting from the bank driven by x; the n with the smallest residual is kept.
 """
 
 from __future__ import annotations
@@ -16,14 +19,18 @@ from numpy.typing import NDArray
 from scipy.optimize import minimize
 
 from ..identification.regression import fit_linear
+from .drive import EXPONENTS, Drive
 from .effects import CATALOGUE, Shape
-from .features import Features
+from .features import ELEMENTS, Features
 
 Array = NDArray[np.float64]
 Rows = NDArray[np.bool_]
 
 #: Bounds of the Stribeck exponent δ searched.
 DELTA_RANGE = (0.5, 4.0)
+#: Fixed-point passes of the presliding drive for each exponent n.
+DRIVE_PASSES = 2
+PRESLIDING = "presliding_hysteresis"
 
 
 @dataclass(frozen=True, eq=False)
@@ -33,8 +40,13 @@ class ModelFit:
     groups: dict[str, tuple[str, ...]]
     """The coefficient names of every effect."""
     shape: Shape | None
+    drive: Drive | None = None
 
     def predict(self, features: Features) -> Array:
+        return self.predict_columns(self.drive.apply(features) if self.drive is not None else features)
+
+    def predict_columns(self, features: Features) -> Array:
+        """The prediction on ``features`` as they are (already driven)."""
         columns = design(self.effects, features, self.shape)
         prediction = np.zeros_like(features.force)
         for name, column in columns.items():
@@ -46,6 +58,8 @@ class ModelFit:
         out = {name: self.coefficients[name] for name in self.groups[effect]}
         if effect == "stribeck" and self.shape is not None:
             out.update(Vs=self.shape.Vs, delta=self.shape.delta)
+        if effect == PRESLIDING and self.drive is not None:
+            out.update(n=self.drive.n)
         return out
 
     def to_dict(self) -> dict[str, object]:
@@ -61,18 +75,44 @@ def design(effects: Sequence[str], features: Features, shape: Shape | None) -> d
 
 
 
-def fit_model(effects: Sequence[str], features: Features, rows: Rows) -> ModelFit:
-    """Coefficients (and the Stribeck shape) of ``effects`` fitted on ``rows``."""
+def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Drive | None = None) -> ModelFit:
+    """Coefficients (and the Stribeck shape, and the presliding drive unless ``drive`` is given)
+    of ``effects`` fitted on ``rows``."""
     effects = tuple(effects)
+    if PRESLIDING in effects:
+        drive = drive or _fit_drive(effects, features, rows)
+        return _fit_linear_part(effects, drive.apply(features), rows, drive)
+    return _fit_linear_part(effects, features, rows, None)
+
+
+def _fit_linear_part(effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None) -> ModelFit:
     shape = _fit_shape(effects, features, rows) if "stribeck" in effects else None
     groups = {name: tuple(CATALOGUE[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects}
     if not effects:
-        return ModelFit(effects, {}, groups, shape)
+        return ModelFit(effects, {}, groups, shape, drive)
     columns = design(effects, features, shape)
     nonnegative = [column for name in effects for column in CATALOGUE[name].nonnegative]
     fit = fit_linear({key: value[rows] for key, value in columns.items()}, features.force[rows],
                      nonnegative or False)  # fmt: skip
-    return ModelFit(effects, fit.coefficients, groups, shape)
+    return ModelFit(effects, fit.coefficients, groups, shape, drive)
+
+
+def _weights(fit: ModelFit) -> tuple[float, ...]:
+    return tuple(max(fit.coefficients[f"W{j + 1}"], 0.0) for j in range(ELEMENTS))
+
+
+def _fit_drive(effects: tuple[str, ...], features: Features, rows: Rows) -> Drive:
+    start = _weights(_fit_linear_part(effects, features, rows, None))  # the bank driven by x
+    tried: list[tuple[float, Drive]] = []
+    for n in EXPONENTS:
+        drive = Drive(n, start)
+        for _ in range(DRIVE_PASSES):
+            driven = drive.apply(features)
+            fit = _fit_linear_part(effects, driven, rows, drive)
+            residual = features.force[rows] - fit.predict_columns(driven)[rows]
+            tried.append((float(residual @ residual), drive))
+            drive = Drive(n, _weights(fit))
+    return min(tried, key=lambda item: item[0])[1]
 
 
 def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shape:

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from .drive import Drive
 from .features import Features
 from .model import fit_model
 
@@ -27,9 +28,12 @@ FOLDS = 4
 #: Each block must hold at least this many samples.
 MIN_FOLD_SAMPLES = 100
 #: An added effect counts when it lowers the held-out mean squared error by more than this share
-#: of the noise variance σ², and lowers it in every block (an effect that helps in some blocks
-#: and hurts in others is fitting something that changes over time, which no effect here is).
-SIGNIFICANCE = 0.05
+#: of the noise variance σ², and raises no block's by more than TIE·σ² (an effect that helps in
+#: some blocks and hurts in others is fitting something that changes over time, which no effect
+#: here is; an effect whose signature is absent from a block, such as inertia in a block without
+#: acceleration, ties there).
+SIGNIFICANCE = 0.2
+TIE = 0.1
 #: Candidates within SIGNIFICANCE·σ² of the best are as good: the one with the fewest
 #: coefficients is chosen among them (parsimony).
 
@@ -63,12 +67,16 @@ def blocks(features: Features) -> list[NDArray[np.bool_]]:
     return masks
 
 
-def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArray[np.bool_]]) -> Score:
+def cross_validate(
+    effects: Sequence[str], features: Features, folds: list[NDArray[np.bool_]], drive: Drive | None = None
+) -> Score:
+    """Held-out residuals of ``effects``; ``drive``: the presliding bank's drive, fixed (fitted in
+    every block otherwise)."""
     residual = np.empty(features.usable.size)
     fold_mse = []
     coefficients = 0
     for fold in folds:
-        fit = fit_model(effects, features, features.usable & ~fold)
+        fit = fit_model(effects, features, features.usable & ~fold, drive)
         error = features.force[fold] - fit.predict(features)[fold]
         residual[fold] = error
         fold_mse.append(float(np.mean(error**2)))
@@ -77,9 +85,11 @@ def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArr
 
 
 def significant(current: Score, candidate: Score, noise_std: float) -> bool:
-    """The candidate lowers the held-out error by more than SIGNIFICANCE·σ², in every block."""
-    threshold = SIGNIFICANCE * noise_std**2
-    return bool(current.mse - candidate.mse > threshold and np.all(candidate.fold_mse < current.fold_mse))
+    """The candidate lowers the held-out error by more than SIGNIFICANCE·σ², and raises no
+    block's by more than TIE·σ²."""
+    variance = noise_std**2
+    return bool(current.mse - candidate.mse > SIGNIFICANCE * variance
+                and np.all(candidate.fold_mse < current.fold_mse + TIE * variance))  # fmt: skip
 
 
 def choose(current: Score, candidates: list[Score], noise_std: float) -> Score | None:

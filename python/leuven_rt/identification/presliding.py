@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .._core import MAX_ELEMENTS, slip_responses
 from .errors import DataError
 from .regression import LinearFit, fit_linear
 
@@ -38,13 +39,14 @@ def equally_spaced(elements: int, presliding_range: float) -> Array:
 
 def element_deflections(x: Array, Delta: Array) -> Array:
     """φᵢ(x) = (x − ζᵢ)/Δᵢ of every element (columns) at every sample (rows), each element
-    starting relaxed at x[0] and slipping (ζᵢ follows x at distance Δᵢ) when over-stretched."""
-    zeta = np.full(Delta.size, x[0])
-    out = np.empty((x.size, Delta.size))
-    for k, position in enumerate(x):
-        zeta = np.clip(zeta, position - Delta, position + Delta)
-        out[k] = position - zeta
-    return out / Delta
+    starting relaxed at x[0] and slipping (ζᵢ follows x at distance Δᵢ) when over-stretched.
+
+    The elements are independent: gms-core's slip rule runs them (``SlipRegressor``), at most
+    MAX_ELEMENTS at a time."""
+    x = np.ascontiguousarray(x, dtype=np.float64)
+    Delta = np.ascontiguousarray(Delta, dtype=np.float64)
+    parts = [slip_responses(x, Delta[first : first + MAX_ELEMENTS]) for first in range(0, Delta.size, MAX_ELEMENTS)]
+    return np.hstack(parts) if parts else np.empty((x.size, 0))
 
 
 @dataclass(frozen=True, eq=False)

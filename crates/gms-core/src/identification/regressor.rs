@@ -5,7 +5,8 @@
 //! is the deflection of element i over its break deflection. Here the elements are driven by the
 //! measured position x (the paper drives them by z; in presliding z follows x closely).
 
-use crate::error::Error;
+use crate::checks::all_finite;
+use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, MaxwellSlip};
 
 /// The element memory of N Maxwell-slip elements with break deflections Δᵢ and unit saturation
@@ -59,6 +60,24 @@ impl<const N: usize> SlipRegressor<N> {
         }
         self.elements.commit(&mut self.zeta, x);
         responses
+    }
+
+    /// Drives the elements along `x`, writing the responses after every sample into `out`, row
+    /// by row (`x.len()` rows of N). All or nothing: a non-finite sample or an `out` of the
+    /// wrong length is reported and leaves the elements as they were.
+    pub fn responses(&mut self, x: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        let expected = x.len().saturating_mul(N);
+        if out.len() != expected {
+            return Err(Error::LengthMismatch {
+                expected,
+                got: out.len(),
+            });
+        }
+        all_finite(x, Field::x)?;
+        for (&position, row) in x.iter().zip(out.chunks_exact_mut(N)) {
+            row.copy_from_slice(&self.advance(position));
+        }
+        Ok(())
     }
 
     /// Forgets the history: the next position relaxes every element again.

@@ -1,0 +1,53 @@
+//! `_core.slip_responses`: Maxwell-slip elements with unit weights driven along a path, the
+//! regressor columns of identification and of the discrepancy workflow.
+
+use gms_core::{Error, Field, SlipRegressor};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use pyo3::prelude::*;
+use seq_macro::seq;
+
+use crate::errors::{block_error, InputError};
+
+fn responses<const N: usize>(delta: &[f64], x: &[f64], out: &mut [f64]) -> Result<(), Error> {
+    let mut delta_array = [0.0; N];
+    delta_array.copy_from_slice(delta);
+    SlipRegressor::new(delta_array)?.responses(x, out)
+}
+
+/// The responses ψᵢ ∈ [−1, 1] of elements with break deflections `delta` driven by `x`, all
+/// relaxed at the first sample, shape (T, N); computed with the GIL released.
+#[pyfunction]
+pub fn slip_responses<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    delta: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let (x, delta) = (x.as_slice()?, delta.as_slice()?);
+    if !(1..=crate::engine::MAX_ELEMENTS).contains(&delta.len()) {
+        return Err(InputError::new_err(format!(
+            "`Delta` must have 1 to {} elements, got {}",
+            crate::engine::MAX_ELEMENTS,
+            delta.len()
+        )));
+    }
+    let mut out = vec![0.0; x.len() * delta.len()];
+    let result = py.detach(|| {
+        seq!(N in 1..=32 {
+            match delta.len() {
+                #(N => responses::<N>(delta, x, &mut out),)*
+                _ => unreachable!("the element count was checked above"),
+            }
+        })
+    });
+    result.map_err(|error| match error {
+        Error::Element { index, .. } => InputError::new_err(format!(
+            "`Delta` must be finite and > 0, got {} at element {index}",
+            delta[index]
+        )),
+        Error::NotFinite {
+            field: Field::x, ..
+        } => block_error(error, x, 0, None),
+        other => InputError::new_err(other.to_string()),
+    })?;
+    PyArray1::from_vec(py, out).reshape([x.len(), delta.len()])
+}

@@ -1,0 +1,54 @@
+"""The presliding bank driven by the modified Leuven model's own state.
+
+In the model (DESIGN.md §1) the Maxwell-slip elements are driven not by the position x but by
+the deflection z of the state equation, dz/dx = 1 − sgn(Fh)·|Fh/s(v)|ⁿ: right after a reversal
+z runs ahead of x (up to twice as fast), and as Fh nears the sliding level s it stops following
+x. A bank driven by x alone (rate-independent Maxwell slip) misses both, by about the noise
+level on the generated logs. A :class:`Drive` is the nonlinear part of the presliding effect,
+like the Stribeck curve's shape: given the element weights W, the sliding level s and the
+exponent n, the project's simulator (:meth:`leuven_rt.LeuvenModel.trace_position`) gives
+z(t), and the element deflections driven by z are the effect's columns, linear in W again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..model import LeuvenModel
+from ..params import Params
+from ..identification.presliding import element_deflections
+from .features import Features
+
+Array = NDArray[np.float64]
+
+#: The exponents n tried (the paper's transition shapes, from soft to sharp).
+EXPONENTS = (1.0, 2.0, 4.0)
+#: Sum(W) over the sliding level s: the model needs sum(W) > s, and the fitted weights give
+#: the level the elements reach in sliding.
+MARGIN = 1.02
+
+
+@dataclass(frozen=True)
+class Drive:
+    n: float
+    weights: tuple[float, ...]
+    """W of every bank element (0 for an element the fit left out)."""
+
+    def deflection(self, features: Features) -> Array:
+        """z(t) of the state equation driven by the filtered position of ``features``."""
+        keep = np.asarray(self.weights) > 0.0
+        if not keep.any():
+            return features.x.copy()
+        weights = np.asarray(self.weights)[keep]
+        level = float(weights.sum()) / MARGIN
+        params = Params(Fc=level, Fs=level, Vs=1.0, delta=1.0, n=self.n, sigma1=0.0, sigma2=0.0,
+                        W=tuple(weights), Delta=tuple(features.scales.deflections[keep]))  # fmt: skip
+        return LeuvenModel(params).trace_position(features.x, features.dt).z
+
+    def apply(self, features: Features) -> Features:
+        """``features`` with the bank driven by z instead of x."""
+        return dataclasses.replace(features, bank=element_deflections(self.deflection(features), features.scales.deflections))
