@@ -145,7 +145,7 @@ def test_mode_must_be_known() -> None:
 @pytest.mark.parametrize(
     ("change", "match"),
     [
-        (dict(Fs=0.5), r"`Fs` must be >= `Fc` = 1, got 0.5"),
+        (dict(Fs=0.5), r"`Fs` must be >= `Fc` = 1(\.0)?, got 0.5"),
         (dict(Vs=-1.0), r"`Vs` must be finite and > 0, got -1"),
         (dict(W=[0.5, -0.5, 0.5, 0.5]), r"`W\[1\]` must be finite and > 0, got -0.5"),
         (dict(W=[0.1] * 4), r"`sum\(W\)` must be > max\(`Fs`, `Fs_neg`\)"),

@@ -128,13 +128,13 @@ def test_start_from_a_position_and_velocity() -> None:
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        (dict(mass=0.0), r"`mass` must be finite and > 0, got 0$"),
-        (dict(mass=-1.0), r"`mass` must be finite and > 0, got -1$"),
-        (dict(mass=math.nan), r"`mass` must be finite and > 0, got NaN"),
+        (dict(mass=0.0), r"`mass` must be finite and > 0, got 0.0$"),
+        (dict(mass=-1.0), r"`mass` must be finite and > 0, got -1.0$"),
+        (dict(mass=math.nan), r"`mass` must be finite and > 0, got nan"),
         (dict(mass="1"), r"`mass` must be a real number, got '1'"),
-        (dict(mass=1.0, stiffness=-5.0), r"`stiffness` must be finite and >= 0, got -5$"),
+        (dict(mass=1.0, stiffness=-5.0), r"`stiffness` must be finite and >= 0, got -5.0$"),
         (dict(mass=1.0, stiffness=math.inf), r"`stiffness` must be finite and >= 0, got inf"),
-        (dict(mass=1.0, drive_speed=math.nan), r"`drive_speed` must be finite, got NaN"),
+        (dict(mass=1.0, drive_speed=math.nan), r"`drive_speed` must be finite, got nan"),
     ],
 )
 def test_bad_mechanical_parameters_are_parameter_errors(kwargs: dict[str, Any], match: str) -> None:
@@ -158,7 +158,7 @@ def test_bad_inputs_are_input_errors_and_leave_the_state_untouched() -> None:
             system.step(0.1, dt)
         with pytest.raises(lr.InputError, match=r"`dt` must be finite and > 0"):
             system.run(np.zeros(4), dt)
-    with pytest.raises(lr.InputError, match=r"`u` must be finite, got NaN at sample 0"):
+    with pytest.raises(lr.InputError, match=r"`u` must be finite, got nan at sample 0"):
         system.step(math.nan, 1e-3)
     with pytest.raises(lr.InputError, match=r"`u` must be finite, got inf at sample 2"):
         system.run([0.1, 0.2, math.inf], 1e-3)

@@ -85,8 +85,12 @@ def test_element_deflections_follow_the_slip_rule(elements: int) -> None:
 
 def test_element_deflections_refuse_bad_input() -> None:
     x = path()
-    with pytest.raises(InputError, match="`Delta` must be finite and > 0, got 0 at element 1"):
+    with pytest.raises(InputError, match=r"`Delta\[1\]` must be finite and > 0 \(and 1/Delta finite\), got 0.0"):
         element_deflections(x, np.array([1e-6, 0.0]))
+    with pytest.raises(InputError, match=r"`Delta\[35\]` must be finite and > 0 .*, got -1.0"):
+        element_deflections(x, np.r_[np.full(35, 1e-6), -1.0])
+    with pytest.raises(InputError, match=r"`Delta\[0\]` .*, got 1e-310"):
+        element_deflections(x, np.array([1e-310]))
     x[3] = np.inf
     with pytest.raises(InputError, match="`x` must be finite, got inf at sample 3"):
         element_deflections(x, np.array([1e-6]))

@@ -77,6 +77,8 @@ def check_dt(dt: Any) -> float:
     value = float(dt)
     if not (np.isfinite(value) and value > 0.0):
         raise InputError(f"`dt` must be finite and > 0, got {value}")
+    if value < np.finfo(np.float64).tiny:  # its reciprocal would overflow
+        raise InputError(f"`dt` must be finite and > 0, got {value} (a subnormal number: at least 2.2e-308 is needed)")
     return value
 
 

@@ -2,9 +2,10 @@
 
 use crate::error::{Error, Field};
 
-/// Checks that `value` is finite and strictly positive.
+/// Checks that `value` is finite and strictly positive, and not subnormal: the model divides by
+/// these values, and the reciprocal of a subnormal overflows.
 pub(crate) fn positive(value: f64, field: Field) -> Result<f64, Error> {
-    if value.is_finite() && value > 0.0 {
+    if value.is_finite() && value >= f64::MIN_POSITIVE {
         Ok(value)
     } else {
         Err(Error::NotPositive(field))

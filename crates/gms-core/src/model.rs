@@ -173,6 +173,9 @@ impl<H: Hysteresis> Params<H> {
 
     /// [`Params::simulate_position`], also writing the deflection z after every sample into
     /// `z` (same length): the state the hysteresis elements are driven by, for analysis.
+    ///
+    /// As with the other block calls, a rejected sample leaves the state as it was; `out` and
+    /// `z` then hold the samples before it.
     pub fn simulate_position_deflection(
         &self,
         state: &mut State<H::Memory>,
@@ -183,7 +186,12 @@ impl<H: Hysteresis> Params<H> {
         z: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
-        check_block(x, Field::x, dt, z)?;
+        if z.len() != x.len() {
+            return Err(Error::LengthMismatch {
+                expected: x.len(),
+                got: z.len(),
+            });
+        }
         let mut deflections = z.iter_mut();
         run_block(state, x, out, |state, x| {
             let force = self.advance_position(state, x, dt, scheme)?;

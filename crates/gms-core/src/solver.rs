@@ -158,7 +158,7 @@ impl<H: Hysteresis> Residual<'_, H> {
         if (rightward && s >= s_end) || (!rightward && s <= s_end) {
             return OnPiece::Beyond(end);
         }
-        OnPiece::Root((y + s).clamp(lo, hi))
+        OnPiece::Root(clamp(y + s, lo, hi))
     }
 
     /// Root of P(s) = s + q + c·φ(α + β·s) (P(0) = r) between 0 and `s_end`, for any n > 0;
@@ -202,7 +202,7 @@ impl<H: Hysteresis> Residual<'_, H> {
                 let (below, above) = (newton - tolerance, newton + tolerance);
                 let (p_below, p_above) = (p(below), p(above));
                 if p_below <= 0.0 && p_above >= 0.0 {
-                    return Some(newton.clamp(a, b));
+                    return Some(clamp(newton, a, b));
                 }
                 if p_below > 0.0 {
                     b = b.min(below);
@@ -256,5 +256,18 @@ fn quadratic_root(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f64 {
         let a0 = beta * p_zero;
         let w = -2.0 * a0 / (1.0 + libm::sqrt((1.0 - 4.0 * a2 * a0).max(0.0)));
         (w - alpha) / beta
+    }
+}
+
+/// `value` limited to [lo, hi]. Unlike `f64::clamp` it cannot panic: a NaN passes through (the
+/// step then reports a non-finite state instead of aborting a control loop).
+#[inline]
+fn clamp(value: f64, lo: f64, hi: f64) -> f64 {
+    if value < lo {
+        lo
+    } else if value > hi {
+        hi
+    } else {
+        value
     }
 }

@@ -28,7 +28,7 @@ pub fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
 /// A step size that is finite and > 0.
 #[inline]
 pub fn check_dt(dt: f64) -> PyResult<f64> {
-    if dt.is_finite() && dt > 0.0 {
+    if dt.is_finite() && dt >= f64::MIN_POSITIVE {
         Ok(dt)
     } else {
         Err(dt_error(dt))

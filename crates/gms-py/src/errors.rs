@@ -31,37 +31,38 @@ pub fn parameter_error(error: Error, spec: &Spec) -> PyErr {
     let message = match error {
         Error::NotPositive(field) => {
             format!(
-                "`{field}` must be finite and > 0, got {}",
-                spec.value(field)
+                "`{field}` must be finite and > 0, got {}{}",
+                show(spec.value(field)),
+                subnormal_note(spec.value(field))
             )
         }
         Error::Negative(field) => {
             format!(
                 "`{field}` must be finite and >= 0, got {}",
-                spec.value(field)
+                show(spec.value(field))
             )
         }
         Error::StaticBelowCoulomb(Field::Fs_neg) => format!(
             "`Fs_neg` must be >= `Fc_neg` = {}, got {}",
-            spec.value(Field::Fc_neg),
-            spec.value(Field::Fs_neg)
+            show(spec.value(Field::Fc_neg)),
+            show(spec.value(Field::Fs_neg))
         ),
         Error::StaticBelowCoulomb(_) => format!(
             "`Fs` must be >= `Fc` = {}, got {}",
-            spec.value(Field::Fc),
-            spec.value(Field::Fs)
+            show(spec.value(Field::Fc)),
+            show(spec.value(Field::Fs))
         ),
         Error::Element { field, index } => {
             format!(
                 "`{field}[{index}]` must be finite and > 0, got {}",
-                spec.element(field, index)
+                show(spec.element(field, index))
             )
         }
         Error::ElementsTooWeak => format!(
             "`sum(W)` must be > max(`Fs`, `Fs_neg`) = {}, got sum(W) = {}: the hysteresis force \
              could never balance the Stribeck curve",
-            spec.value(Field::Fs).max(spec.value(Field::Fs_neg)),
-            spec.w.iter().sum::<f64>()
+            show(spec.value(Field::Fs).max(spec.value(Field::Fs_neg))),
+            show(spec.w.iter().sum::<f64>())
         ),
         other => other.to_string(),
     };
@@ -83,7 +84,8 @@ pub fn run_error(error: Error, value: f64, channel: Option<usize>) -> PyErr {
         )),
         Error::NotPositive(Field::dt) => dt_error(value),
         Error::NotFinite { field, index } => InputError::new_err(format!(
-            "`{field}` must be finite, got {value} at {}",
+            "`{field}` must be finite, got {} at {}",
+            show(value),
             at(index)
         )),
         other => InputError::new_err(other.to_string()),
@@ -92,7 +94,31 @@ pub fn run_error(error: Error, value: f64, channel: Option<usize>) -> PyErr {
 
 /// A step size that is not finite and > 0.
 pub fn dt_error(dt: f64) -> PyErr {
-    InputError::new_err(format!("`dt` must be finite and > 0, got {dt}"))
+    InputError::new_err(format!(
+        "`dt` must be finite and > 0, got {}{}",
+        show(dt),
+        subnormal_note(dt)
+    ))
+}
+
+/// A float as Python users read it: shortest round-trip digits, `nan`, `inf`.
+pub fn show(value: f64) -> String {
+    if value.is_nan() {
+        "nan".into()
+    } else if value.is_infinite() {
+        if value > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{value:?}")
+    }
+}
+
+/// Why a positive value was refused when it is subnormal: its reciprocal overflows.
+fn subnormal_note(value: f64) -> &'static str {
+    if value > 0.0 && value < f64::MIN_POSITIVE {
+        " (a subnormal number: at least 2.2e-308 is needed)"
+    } else {
+        ""
+    }
 }
 
 /// The error of a single step of one channel: the value shown is the offending input or dt.

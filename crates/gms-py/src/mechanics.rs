@@ -16,7 +16,7 @@ use crate::bank::{all_or_nothing, Memory};
 use crate::convert::{
     channel_count, check_dt, parse_scheme, real, same_channels, scheme_name, single_channel,
 };
-use crate::errors::{block_error, step_error, InputError, ParameterError};
+use crate::errors::{block_error, show, step_error, InputError, ParameterError};
 use crate::spec::Spec;
 
 /// One channel's states as flat values: x, v, anchor, z and the memory.
@@ -129,16 +129,17 @@ impl Mechanics {
     fn error(&self, error: Error) -> PyErr {
         use gms_core::Field;
         match error {
-            Error::NotPositive(Field::mass) => {
-                ParameterError::new_err(format!("`mass` must be finite and > 0, got {}", self.mass))
-            }
+            Error::NotPositive(Field::mass) => ParameterError::new_err(format!(
+                "`mass` must be finite and > 0, got {}",
+                show(self.mass)
+            )),
             Error::Negative(Field::stiffness) => ParameterError::new_err(format!(
                 "`stiffness` must be finite and >= 0, got {}",
-                self.stiffness
+                show(self.stiffness)
             )),
             Error::NotFiniteValue(Field::drive_speed) => ParameterError::new_err(format!(
                 "`drive_speed` must be finite, got {}",
-                self.drive_speed
+                show(self.drive_speed)
             )),
             other => ParameterError::new_err(other.to_string()),
         }

@@ -13,7 +13,7 @@ use seq_macro::seq;
 
 use crate::convert::real;
 use crate::engine::MAX_ELEMENTS;
-use crate::errors::{InputError, ParameterError};
+use crate::errors::{show, InputError, ParameterError};
 
 /// One identifier, whatever its N.
 trait Online: Send + Sync {
@@ -80,17 +80,6 @@ fn build(delta: &[f64], initial: &[f64], settings: RlsSettings) -> Result<Box<dy
         }
     });
     Err(Error::NoElements)
-}
-
-/// A float as Python users read it: shortest round-trip digits, `nan`, `inf`.
-fn show(value: f64) -> String {
-    if value.is_nan() {
-        "nan".into()
-    } else if value.is_infinite() {
-        if value > 0.0 { "inf" } else { "-inf" }.into()
-    } else {
-        format!("{value:?}")
-    }
 }
 
 /// A construction error, with the value that broke the rule.

@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use seq_macro::seq;
 
-use crate::errors::{block_error, InputError};
+use crate::errors::{block_error, show, InputError};
 
 fn responses<const N: usize>(delta: &[f64], x: &[f64], out: &mut [f64]) -> Result<(), Error> {
     let mut delta_array = [0.0; N];
@@ -41,8 +41,8 @@ pub fn slip_responses<'py>(
     });
     result.map_err(|error| match error {
         Error::Element { index, .. } => InputError::new_err(format!(
-            "`Delta` must be finite and > 0, got {} at element {index}",
-            delta[index]
+            "`Delta[{index}]` must be finite and > 0 (and 1/Delta finite), got {}",
+            show(delta[index])
         )),
         Error::NotFinite {
             field: Field::x, ..

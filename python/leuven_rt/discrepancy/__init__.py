@@ -1,7 +1,8 @@
 """The discrepancy workflow: point it at a log of a machine, and it names what the friction model
 is missing (the effect catalogue of DESIGN.md §3), where, and how much better the model gets.
 
-:mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.model` (fits),
+:mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.drive` (the presliding
+bank driven by the model's state), :mod:`.model` (fits),
 :mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
 :mod:`.diagnose` (the rounds), :mod:`.report` (JSON of DESIGN.md §4), :mod:`.plot` (figure),
 :mod:`.hidden` (generated data with hidden effects).

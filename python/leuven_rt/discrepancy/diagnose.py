@@ -20,8 +20,7 @@ from ..identification.report import noise_floor
 from .effects import CATALOGUE, parse_effects
 from .features import compute_features
 from .localise import regions, where_improved, where_unexplained
-from .drive import Drive
-from .model import PRESLIDING, ModelFit, fit_model
+from .model import ModelFit, fit_model
 from .report import Diagnosis, Step
 from .scoring import blocks, choose, cross_validate, zero_score
 
@@ -47,26 +46,18 @@ def diagnose(
     noise = noise_floor(record.f)
     usable = features.usable
 
-    drive: Drive | None = None  # the presliding bank's drive, fitted once the effect is in
-
     def fitted(effect_set: tuple[str, ...]) -> ModelFit:
-        return fit_model(effect_set, features, usable, drive)
+        return fit_model(effect_set, features, usable)
 
     def rms(residual: np.ndarray) -> float:
         return float(np.sqrt(np.mean(residual[usable] ** 2)))
 
-    def freeze_drive(effect_set: tuple[str, ...]) -> Drive | None:
-        # Fitted on every usable sample and then held: later candidates and the current model are
-        # scored with the same drive, so that neither gains from it.
-        return fit_model(effect_set, features, usable).drive if PRESLIDING in effect_set else None
-
-    drive = freeze_drive(effects)
     model = fitted(effects)
     residual = features.force - model.predict(features)
     residuals = [residual]
     steps: list[Step] = []
     with tqdm(desc="diagnose", unit=" fits", disable=not progress, leave=False) as bar:
-        current = cross_validate(effects, features, folds, drive) if effects else None
+        current = cross_validate(effects, features, folds) if effects else None
         while True:
             candidates = [name for name in CATALOGUE if name not in effects]
             if not candidates:
@@ -76,7 +67,7 @@ def diagnose(
             scores = []
             for name in candidates:
                 bar.set_postfix_str(name)
-                scores.append(cross_validate(effects + (name,), features, folds, drive))
+                scores.append(cross_validate(effects + (name,), features, folds))
                 bar.update(1)
             if current is None:  # an empty baseline is scored against predicting zero
                 current = zero_score(features, folds)
@@ -85,9 +76,6 @@ def diagnose(
                 break
             added = best.effects[-1]
             effects = best.effects
-            if added == PRESLIDING:
-                drive = freeze_drive(effects)
-                best = cross_validate(effects, features, folds, drive)
             model = fitted(effects)
             after = features.force - model.predict(features)
             steps.append(Step(added, where_improved(features, residual, after), rms(residual), rms(after),

@@ -1,18 +1,20 @@
 """The signals every candidate effect is built from, computed once per record.
 
-Velocity and acceleration come from the identification's zero-phase derivatives; the sign of
-the velocity is the direction of motion read from the position with a play of ± the position
-noise (a Maxwell-slip element of that width), so that it flips exactly where the position turns
-and noise does not flip it. Where the position is limited by its quantization rather than by
-noise, a slow turn can stay inside one step for several samples, and friction reverses on a
-sample where the recorded position does not change: between a step one way and the next step
-the other way, the turn is placed where the zero-phase filtered position first falls back from
-its extreme (a single sample of late flip costs (2·Fc)², hundreds of times the noise variance).
-The presliding memory is a bank of Maxwell-slip
-elements driven by the filtered position (each element's deflection clipped to ±Δⱼ, Δⱼ
-log-spaced from :data:`SMALLEST_DEFLECTION` of the stroke (well above the encoder's resolution,
-so that the bank does not turn into a second Coulomb term) to a hundredth of the stroke): any nonnegative
-mix of their normalised deflections is a rate-independent Maxwell-slip hysteresis force.
+Velocity and acceleration come from zero-phase derivatives (the identification's filter, at
+:data:`CUTOFF`). The sign of the velocity is the direction of motion read from the position with
+a play of ± the position noise (a Maxwell-slip element of that width), so that it flips exactly
+where the position turns and noise does not flip it. Where the position is limited by its
+quantization rather than by noise, a slow turn can stay inside one step for several samples,
+and friction reverses on a sample where the recorded position does not change: between a step
+one way and the next step the other way, the turn is placed where the zero-phase filtered
+position first falls back from its extreme (one sample of late flip costs (2·Fc)², on the
+generated logs ten thousand times the noise variance).
+
+The presliding memory is a bank of Maxwell-slip elements (each element's deflection clipped to
+±Δⱼ, Δⱼ log-spaced from :data:`SMALLEST_DEFLECTION` of the stroke, well above the encoder's
+resolution so that the bank does not turn into a second Coulomb term, to a hundredth of the
+stroke), driven here by the filtered position; once the presliding effect is fitted, its drive
+(:mod:`.drive`) drives them by the state z of the model instead.
 """
 
 from __future__ import annotations
@@ -35,6 +37,12 @@ ELEMENTS = 12
 #: identification's default, because the Stribeck curve is steep in v and a velocity smoothed
 #: at the plateaus' ramps biases it, while the quantization noise it lets through is small.
 CUTOFF = 0.1
+#: Samples after which the filter's ringing at a position step has died out (2/CUTOFF: a dozen
+#: time constants of the filter).
+SETTLING = math.ceil(2.0 / CUTOFF)
+#: How far below its extreme the filtered position must fall to count as a turn, as a share of
+#: the quantization step: above the rounding of a settled filter, far below a step.
+RETREAT = 0.02
 #: Largest break deflection of the bank, as a share of the stroke.
 LARGEST_DEFLECTION = 1e-2
 #: Smallest break deflection of the bank, as a share of the stroke (and at least ten position
@@ -65,11 +73,13 @@ class Features:
     v: Array
     a: Array
     sign: Array
-    """sgn(v): the direction of motion, in [−1, 1], flipping over ± the position noise."""
+    """sgn(v): the direction of motion, in [−1, 1], flipping over ± the position noise (turns
+    inside one quantization step placed by the filtered position)."""
     position: Array
     """Position scaled to [−1, 1] over the stroke."""
     bank: Array
-    """(samples, ELEMENTS): normalised element deflections eⱼ/Δⱼ in [−1, 1]."""
+    """(samples, ELEMENTS): normalised element deflections eⱼ/Δⱼ in [−1, 1], driven by the
+    filtered position (by z in the features a :class:`~.drive.Drive` returns)."""
     scales: Scales
     travel: Array
     """Distance travelled since the last reversal [m]."""
@@ -91,10 +101,13 @@ def direction_of_motion(data: MotionData, filtered: Array, play: float) -> Array
     for before, after, old, new in zip(moves[:-1], moves[1:], ways[:-1], ways[1:]):
         if old == new or after - before < 2:
             continue
-        path = old * filtered[before:after]  # grows while the motion goes the old way
-        retreat = np.flatnonzero(path[1:] < np.maximum.accumulate(path)[:-1])
+        # The filter overshoots a step by a few hundredths of it: in a long stretch (a pause
+        # inside the step) that ringing is not a turn, so the search starts once it has settled.
+        first = before + SETTLING if after - before > 2 * SETTLING else before
+        path = old * filtered[first:after]  # grows while the motion goes the old way
+        retreat = np.flatnonzero(path[1:] < np.maximum.accumulate(path)[:-1] - RETREAT * resolution)
         if retreat.size:
-            sign[before + 1 + retreat[0] : after] = new
+            sign[first + 1 + retreat[0] : after] = new
     return sign
 
 

@@ -6,7 +6,7 @@ projection: for each trial shape the linear coefficients are solved exactly (pla
 squares), and Nelder–Mead moves (log Vs, δ), started from the best of a grid over the speeds.
 With ``presliding_hysteresis``, the bank's drive (:mod:`.drive`) is fitted by fixed-point
 iteration for each exponent n tried: the weights fitted on the bank driven by z give the z of
-the next pass, starting from the bank driven by x; the n with the smallest residual is kept.
+the next pass, starting from the bank driven by x; the fit with the smallest residual is kept.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from scipy.optimize import minimize
 from ..identification.regression import fit_linear
 from .drive import EXPONENTS, Drive
 from .effects import CATALOGUE, Shape
-from .features import ELEMENTS, Features
+from .features import Features
 
 Array = NDArray[np.float64]
 Rows = NDArray[np.bool_]
@@ -63,7 +63,10 @@ class ModelFit:
         return out
 
     def to_dict(self) -> dict[str, object]:
-        return {"effects": list(self.effects), "params": {name: self.params(name) for name in self.effects}}
+        out: dict[str, object] = {"effects": list(self.effects), "params": {name: self.params(name) for name in self.effects}}
+        if self.drive is not None:  # the weights that shaped z, to reproduce the prediction
+            out["presliding_drive"] = {"n": self.drive.n, "W": list(self.drive.weights)}
+        return out
 
 
 def design(effects: Sequence[str], features: Features, shape: Shape | None) -> dict[str, Array]:
@@ -79,10 +82,11 @@ def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Dri
     """Coefficients (and the Stribeck shape, and the presliding drive unless ``drive`` is given)
     of ``effects`` fitted on ``rows``."""
     effects = tuple(effects)
-    if PRESLIDING in effects:
-        drive = drive or _fit_drive(effects, features, rows)
+    if PRESLIDING not in effects:
+        return _fit_linear_part(effects, features, rows, None)
+    if drive is not None:
         return _fit_linear_part(effects, drive.apply(features), rows, drive)
-    return _fit_linear_part(effects, features, rows, None)
+    return _fit_driven(effects, features, rows)
 
 
 def _fit_linear_part(effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None) -> ModelFit:
@@ -98,20 +102,28 @@ def _fit_linear_part(effects: tuple[str, ...], features: Features, rows: Rows, d
 
 
 def _weights(fit: ModelFit) -> tuple[float, ...]:
-    return tuple(max(fit.coefficients[f"W{j + 1}"], 0.0) for j in range(ELEMENTS))
+    return tuple(max(fit.coefficients[name], 0.0) for name in fit.groups[PRESLIDING])
 
 
-def _fit_drive(effects: tuple[str, ...], features: Features, rows: Rows) -> Drive:
-    start = _weights(_fit_linear_part(effects, features, rows, None))  # the bank driven by x
-    tried: list[tuple[float, Drive]] = []
+def _fit_driven(effects: tuple[str, ...], features: Features, rows: Rows) -> ModelFit:
+    """The best fit over the exponents tried, each after DRIVE_PASSES fixed-point passes; the
+    bank stays driven by x when the fit gives no element a positive weight."""
+    undriven = _fit_linear_part(effects, features, rows, None)
+    start = _weights(undriven)
+    if max(start) <= 0.0:
+        return undriven
+    tried: list[tuple[float, ModelFit]] = []
     for n in EXPONENTS:
         drive = Drive(n, start)
         for _ in range(DRIVE_PASSES):
             driven = drive.apply(features)
             fit = _fit_linear_part(effects, driven, rows, drive)
             residual = features.force[rows] - fit.predict_columns(driven)[rows]
-            tried.append((float(residual @ residual), drive))
-            drive = Drive(n, _weights(fit))
+            tried.append((float(residual @ residual), fit))
+            weights = _weights(fit)
+            if max(weights) <= 0.0:
+                break
+            drive = Drive(n, weights)
     return min(tried, key=lambda item: item[0])[1]
 
 

@@ -17,7 +17,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from .drive import Drive
 from .features import Features
 from .model import fit_model
 
@@ -28,14 +27,14 @@ FOLDS = 4
 #: Each block must hold at least this many samples.
 MIN_FOLD_SAMPLES = 100
 #: An added effect counts when it lowers the held-out mean squared error by more than this share
-#: of the noise variance σ², and raises no block's by more than TIE·σ² (an effect that helps in
-#: some blocks and hurts in others is fitting something that changes over time, which no effect
-#: here is; an effect whose signature is absent from a block, such as inertia in a block without
-#: acceleration, ties there).
+#: of the noise variance σ² (and candidates within it of the best are as good: the one with the
+#: fewest coefficients is chosen among them).
 SIGNIFICANCE = 0.2
+#: ... and raises no block's mean squared error by more than this share of σ². An effect that
+#: helps in some blocks and hurts in others is fitting something that changes over time, which
+#: no effect here is (a drift costs its blocks several σ²); an effect whose signature is absent
+#: from a block, such as inertia in a block without acceleration, ties there.
 TIE = 0.1
-#: Candidates within SIGNIFICANCE·σ² of the best are as good: the one with the fewest
-#: coefficients is chosen among them (parsimony).
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,16 +66,14 @@ def blocks(features: Features) -> list[NDArray[np.bool_]]:
     return masks
 
 
-def cross_validate(
-    effects: Sequence[str], features: Features, folds: list[NDArray[np.bool_]], drive: Drive | None = None
-) -> Score:
-    """Held-out residuals of ``effects``; ``drive``: the presliding bank's drive, fixed (fitted in
-    every block otherwise)."""
+def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArray[np.bool_]]) -> Score:
+    """Held-out residuals of ``effects``: every block predicted by the model (its coefficients,
+    the Stribeck shape and the presliding drive) fitted to the other blocks."""
     residual = np.empty(features.usable.size)
     fold_mse = []
     coefficients = 0
     for fold in folds:
-        fit = fit_model(effects, features, features.usable & ~fold, drive)
+        fit = fit_model(effects, features, features.usable & ~fold)
         error = features.force[fold] - fit.predict(features)[fold]
         residual[fold] = error
         fold_mse.append(float(np.mean(error**2)))

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._core import MAX_ELEMENTS, slip_responses
+from ..errors import InputError
 from .errors import DataError
 from .regression import LinearFit, fit_linear
 
@@ -45,6 +46,12 @@ def element_deflections(x: Array, Delta: Array) -> Array:
     MAX_ELEMENTS at a time."""
     x = np.ascontiguousarray(x, dtype=np.float64)
     Delta = np.ascontiguousarray(Delta, dtype=np.float64)
+    if Delta.ndim != 1:
+        raise InputError(f"`Delta` must be one-dimensional, got shape {Delta.shape}")
+    with np.errstate(divide="ignore", over="ignore"):
+        bad = np.flatnonzero(~(np.isfinite(Delta) & (Delta > 0.0) & np.isfinite(1.0 / Delta)))
+    if bad.size:
+        raise InputError(f"`Delta[{bad[0]}]` must be finite and > 0 (and 1/Delta finite), got {float(Delta[bad[0]])!r}")
     parts = [slip_responses(x, Delta[first : first + MAX_ELEMENTS]) for first in range(0, Delta.size, MAX_ELEMENTS)]
     return np.hstack(parts) if parts else np.empty((x.size, 0))
 

@@ -74,23 +74,29 @@ def fit_linear(
     unknown = bounded - set(names)
     if unknown:
         raise DataError(f"`nonnegative` names columns that are not regressors: {sorted(unknown)}")
+    # Everything below works on the small triangular factor: ‖Aθ − y‖² = ‖Rθ − Qᵀy‖² + const
+    # for A = QR, so the solution, the singular values and the covariance are those of A. One
+    # Householder QR of [A y] gives both R and Qᵀy without forming Q.
+    columns = len(names)
+    augmented = np.linalg.qr(np.column_stack((matrix, target)), mode="r")
+    r, projected = augmented[:columns, :columns], augmented[:columns, columns]
     if bounded:
         lower = np.array([0.0 if name in bounded else -np.inf for name in names])
-        theta = lsq_linear(matrix, target, bounds=(lower, np.inf), method="bvls").x
+        theta = lsq_linear(r, projected, bounds=(lower, np.inf), method="bvls").x
     else:
-        theta = np.linalg.lstsq(matrix, target, rcond=None)[0]
+        theta = np.linalg.lstsq(r, projected, rcond=None)[0]
     prediction = matrix @ theta
     residual = target - prediction
-    singular = np.linalg.svd(matrix, compute_uv=False)
+    singular = np.linalg.svd(r, compute_uv=False)
     condition = float(singular[0] / singular[-1]) if singular[-1] > 0 else float("inf")
-    r = np.abs(np.diag(np.linalg.qr(matrix, mode="r")))
     dof = max(target.size - len(names), 1)
     sigma = float(np.linalg.norm(residual) / np.sqrt(dof))
     try:
-        covariance = np.linalg.inv(matrix.T @ matrix)
+        covariance = np.linalg.inv(r.T @ r)
         errors = sigma * np.sqrt(np.clip(np.diag(covariance), 0.0, None))
     except np.linalg.LinAlgError:
         errors = np.full(len(names), np.inf)
+    r = np.abs(np.diag(r))
     return LinearFit(
         coefficients={name: float(value) for name, value in zip(names, theta)},
         prediction=prediction,

@@ -3,7 +3,8 @@
 //! This is the paper's presliding identification (section IV-B): with the break deflections Δᵢ
 //! pre-assigned, Fh = Σᵢ Wᵢ·ψᵢ is linear in the unknown saturation forces Wᵢ, where ψᵢ ∈ [−1, 1]
 //! is the deflection of element i over its break deflection. Here the elements are driven by the
-//! measured position x (the paper drives them by z; in presliding z follows x closely).
+//! measured position x (the paper drives them by z; in presliding z follows x closely); the
+//! block call [`SlipRegressor::responses`] drives them along any path, z included.
 
 use crate::checks::all_finite;
 use crate::error::{Error, Field};
