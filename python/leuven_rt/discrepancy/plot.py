@@ -35,7 +35,12 @@ def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
         by_travel.plot(np.maximum(f.travel[usable], 1e-12), residual[usable], ".", markersize=1, label=label)
     by_time.set(xlabel="time t [s]", ylabel="residual f − model [N]", title="Residual over time")
     by_velocity.set(xlabel="velocity v [m/s]", ylabel="residual [N]", title="Residual vs velocity")
-    by_velocity.set_xscale("symlog", linthresh=max(float(np.percentile(np.abs(f.v[usable]), 10)), 1e-12))
+    linear_below = max(float(np.percentile(np.abs(f.v[usable]), 10)), 1e-12)
+    by_velocity.set_xscale("symlog", linthresh=linear_below)
+    # Decades from ten times the linear range outwards, and 0: labels at ±linthresh would collide.
+    top = max(float(np.max(np.abs(f.v[usable]))), 10.0 * linear_below)
+    decades = 10.0 ** np.arange(np.ceil(np.log10(10.0 * linear_below)), np.floor(np.log10(top)) + 1)
+    by_velocity.set_xticks(np.concatenate((-decades[::-1], [0.0], decades)))
     by_position.set(xlabel="position x [m]", ylabel="residual [N]", title="Residual vs position")
     by_travel.set(xlabel="displacement since reversal [m]", ylabel="residual [N]", xscale="log",
                   title="Residual vs displacement since reversal")  # fmt: skip
