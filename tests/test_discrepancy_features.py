@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from leuven_rt import MotionData
-from leuven_rt.discrepancy.features import compute_features, direction_of_motion
+from leuven_rt.discrepancy.features import compute_features, direction_of_motion, position_spread
 from leuven_rt.discrepancy.hidden import make_hidden
 from leuven_rt.identification.presliding import element_deflections
 
@@ -38,7 +38,8 @@ def test_a_noisy_position_keeps_the_play() -> None:
     features = compute_features(noisy)
     assert features.scales.play > 2e-9  # the position noise, not the encoder step
     play_only = element_deflections(noisy.x, np.array([features.scales.play]))[:, 0]
-    np.testing.assert_array_equal(direction_of_motion(noisy, features.x, features.scales.play), play_only)
+    spread = position_spread(noisy, features.x)
+    np.testing.assert_array_equal(direction_of_motion(noisy.x, features.x, features.scales.play, spread), play_only)
 
 
 def test_a_pause_inside_one_step_is_not_a_turn() -> None:

@@ -1,6 +1,6 @@
 """The analysis runs of the Rust core: ``LeuvenModel.trace_position`` (forces and the deflection z)
 and ``element_deflections`` (Maxwell-slip responses along a path), against the per-sample calls
-and a plain numpy loop of the slip rule."""
+and the numpy reference's slip rule."""
 
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from leuven_rt import InputError, LeuvenModel, Trace
 from leuven_rt.identification.presliding import element_deflections
+from leuven_rt.reference import MaxwellSlip
 
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 DT = 1e-4
@@ -25,13 +26,14 @@ def path(samples: int = 2000, seed: int = 0) -> np.ndarray:
 
 
 def numpy_slip(x: np.ndarray, Delta: np.ndarray) -> np.ndarray:
-    """The slip rule, one sample at a time: each element's deflection is clipped to ±Δ."""
-    deflection = np.zeros(Delta.size)
+    """The numpy reference's slip rule (``leuven_rt.reference.MaxwellSlip``), one sample at a time."""
+    bank = MaxwellSlip(tuple(np.ones(Delta.size)), tuple(Delta))
+    zeta = np.full(Delta.size, x[0])
     out = np.empty((x.size, Delta.size))
-    for k, step in enumerate(np.diff(x, prepend=x[0])):
-        deflection = np.clip(deflection + step, -Delta, Delta)
-        out[k] = deflection
-    return out / Delta
+    for k, position in enumerate(x):
+        bank.commit(zeta, position)
+        out[k] = (position - zeta) / Delta
+    return out
 
 
 @SETTINGS

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use gms_core::{Compensator, LeuvenParams, MaxwellSlip, Mode, Params, Stribeck};
+use gms_ffi::leuven_rt_status::*;
 
 // The loop of control_loop.c, constant for constant.
 const DT: f64 = 1e-3;
@@ -219,13 +220,14 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     eprintln!("largest relative difference C vs Rust: {largest:e}");
 
     // Bad input: (status, field, index) for each case.
-    const OK: i32 = 0;
-    const INVALID_POINTER: i32 = 1;
-    const INVALID_PARAMETER: i32 = 2;
-    const INVALID_DT: i32 = 3;
-    const INVALID_MODE: i32 = 4;
-    const NOT_FINITE_INPUT: i32 = 5;
-    const INCOMPATIBLE_PARAMS: i32 = 6;
+    // The status codes as C sees them, from the crate's own enum.
+    const OK: i32 = LEUVEN_RT_OK as i32;
+    const INVALID_POINTER: i32 = LEUVEN_RT_INVALID_POINTER as i32;
+    const INVALID_PARAMETER: i32 = LEUVEN_RT_INVALID_PARAMETER as i32;
+    const INVALID_DT: i32 = LEUVEN_RT_INVALID_DT as i32;
+    const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
+    const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
+    const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
     let expected: &[(&str, i32, &str, usize)] = &[
         ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
         ("nan_observer", NOT_FINITE_INPUT, "-", 0),

@@ -12,7 +12,7 @@ use seq_macro::seq;
 use crate::bank::Memory;
 use crate::convert::real;
 use crate::engine::MAX_ELEMENTS;
-use crate::errors::{dt_error, InputError, ParameterError};
+use crate::errors::{dt_error, show, InputError, ParameterError};
 use crate::spec::Spec;
 
 /// A hysteresis whose parameters can be read from a [`Spec`] of the same kind and size.
@@ -244,14 +244,16 @@ impl CompensatorEngine {
             } if self.axis.mode() == Mode::Observer => {
                 let (_, _, last) = self.axis.state();
                 InputError::new_err(format!(
-                    "`x` = {input:?} after {:?} over dt = {:?} gives a velocity that is not \
-                     finite; the state and output are unchanged",
-                    last.unwrap_or(f64::NAN),
-                    self.axis.dt()
+                    "`x` = {} after {} over dt = {} gives a velocity that is not finite; the \
+                     state and output are unchanged",
+                    show(input),
+                    show(last.unwrap_or(f64::NAN)),
+                    show(self.axis.dt())
                 ))
             }
             Error::NotFinite { field, .. } => InputError::new_err(format!(
-                "`{field}` must be finite, got {input:?}; the state and output are unchanged"
+                "`{field}` must be finite, got {}; the state and output are unchanged",
+                show(input)
             )),
             other => InputError::new_err(format!("{other}; the state and output are unchanged")),
         }

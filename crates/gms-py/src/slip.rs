@@ -6,6 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use seq_macro::seq;
 
+use crate::engine::MAX_ELEMENTS;
 use crate::errors::{block_error, show, InputError};
 
 fn responses<const N: usize>(delta: &[f64], x: &[f64], out: &mut [f64]) -> Result<(), Error> {
@@ -14,8 +15,19 @@ fn responses<const N: usize>(delta: &[f64], x: &[f64], out: &mut [f64]) -> Resul
     SlipRegressor::new(delta_array)?.responses(x, out)
 }
 
+/// One group of at most MAX_ELEMENTS elements, rows of `delta.len()` in `out`.
+fn group_responses(delta: &[f64], x: &[f64], out: &mut [f64]) -> Result<(), Error> {
+    seq!(N in 1..=32 {
+        match delta.len() {
+            #(N => responses::<N>(delta, x, out),)*
+            _ => unreachable!("groups hold 1 to MAX_ELEMENTS elements"),
+        }
+    })
+}
+
 /// The responses ψᵢ ∈ [−1, 1] of elements with break deflections `delta` driven by `x`, all
-/// relaxed at the first sample, shape (T, N); computed with the GIL released.
+/// relaxed at the first sample, shape (T, N); computed with the GIL released. The elements are
+/// independent: they run in groups of MAX_ELEMENTS, whatever N is.
 #[pyfunction]
 pub fn slip_responses<'py>(
     py: Python<'py>,
@@ -23,21 +35,27 @@ pub fn slip_responses<'py>(
     delta: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let (x, delta) = (x.as_slice()?, delta.as_slice()?);
-    if !(1..=crate::engine::MAX_ELEMENTS).contains(&delta.len()) {
-        return Err(InputError::new_err(format!(
-            "`Delta` must have 1 to {} elements, got {}",
-            crate::engine::MAX_ELEMENTS,
-            delta.len()
-        )));
-    }
-    let mut out = vec![0.0; x.len() * delta.len()];
+    let elements = delta.len();
+    let mut out = vec![0.0; x.len() * elements];
     let result = py.detach(|| {
-        seq!(N in 1..=32 {
-            match delta.len() {
-                #(N => responses::<N>(delta, x, &mut out),)*
-                _ => unreachable!("the element count was checked above"),
+        let mut group = Vec::new();
+        for (first, chunk) in (0..).step_by(MAX_ELEMENTS).zip(delta.chunks(MAX_ELEMENTS)) {
+            group.resize(x.len() * chunk.len(), 0.0);
+            group_responses(chunk, x, &mut group).map_err(|error| match error {
+                Error::Element { field, index } => Error::Element {
+                    field,
+                    index: first + index,
+                },
+                other => other,
+            })?;
+            for (row, values) in out
+                .chunks_exact_mut(elements)
+                .zip(group.chunks_exact(chunk.len()))
+            {
+                row[first..first + chunk.len()].copy_from_slice(values);
             }
-        })
+        }
+        Ok(())
     });
     result.map_err(|error| match error {
         Error::Element { index, .. } => InputError::new_err(format!(
@@ -49,5 +67,5 @@ pub fn slip_responses<'py>(
         } => block_error(error, x, 0, None),
         other => InputError::new_err(other.to_string()),
     })?;
-    PyArray1::from_vec(py, out).reshape([x.len(), delta.len()])
+    PyArray1::from_vec(py, out).reshape([x.len(), elements])
 }

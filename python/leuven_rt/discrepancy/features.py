@@ -37,8 +37,8 @@ ELEMENTS = 12
 #: identification's default, because the Stribeck curve is steep in v and a velocity smoothed
 #: at the plateaus' ramps biases it, while the quantization noise it lets through is small.
 CUTOFF = 0.1
-#: Samples after which the filter's ringing at a position step has died out (2/CUTOFF: a dozen
-#: time constants of the filter).
+#: Samples after which the filter's ringing at a position step (and its transient at either end
+#: of the record) has died out: 2/CUTOFF, a dozen time constants of the filter.
 SETTLING = math.ceil(2.0 / CUTOFF)
 #: How far below its extreme the filtered position must fall to count as a turn, as a share of
 #: the quantization step: above the rounding of a settled filter, far below a step.
@@ -88,12 +88,12 @@ class Features:
     dt: float
 
 
-def direction_of_motion(data: MotionData, filtered: Array, play: float) -> Array:
-    """sgn(v) in [−1, 1] from the recorded position (and its zero-phase ``filtered`` version, for
-    the turns inside one quantization step when the position is quantization-limited)."""
-    raw = data.x
+def direction_of_motion(raw: Array, filtered: Array, play: float, spread: tuple[float, float]) -> Array:
+    """sgn(v) in [−1, 1] from the recorded position ``raw`` (and its zero-phase ``filtered``
+    version, for the turns inside one quantization step when the position's ``spread``,
+    (resolution, noise) from :func:`position_spread`, says it is quantization-limited)."""
     sign = element_deflections(raw, np.array([play]))[:, 0]
-    resolution, noise = position_spread(data, filtered)
+    resolution, noise = spread
     if noise > 0.5 * resolution:
         return sign
     moves = np.flatnonzero(np.diff(raw)) + 1
@@ -116,16 +116,17 @@ def compute_features(data: MotionData, scales: Scales | None = None) -> Features
     build the columns of the model fitted there; by default they are measured on ``data``."""
     derivatives = estimate_derivatives(data, CUTOFF / data.dt)
     x, v = derivatives.x, derivatives.v
+    spread = position_spread(data, x)
     if scales is None:
-        scales = measure_scales(data, x)
+        scales = measure_scales(x, spread)
     segments = find_segments(data.x, x)
-    edge = min(math.ceil(2.0 / (derivatives.cutoff * data.dt)), data.samples // 10)
+    edge = min(SETTLING, data.samples // 10)  # the filter's transients at both ends
     usable = np.ones(data.samples, dtype=bool)
     usable[:edge] = False
     usable[data.samples - edge :] = False
     return Features(
         t=data.t, force=data.f, x=x, v=v, a=derivatives.a,
-        sign=direction_of_motion(data, x, scales.play),
+        sign=direction_of_motion(data.x, x, scales.play, spread),
         position=(x - scales.middle) / scales.half_stroke, bank=element_deflections(x, scales.deflections),
         scales=scales, travel=segments.travel, usable=usable, dt=data.dt,
     )  # fmt: skip
@@ -140,9 +141,10 @@ def position_spread(data: MotionData, x: Array) -> tuple[float, float]:
     return resolution, max(noise, 0.3 * resolution)
 
 
-def measure_scales(data: MotionData, x: Array) -> Scales:
+def measure_scales(x: Array, spread: tuple[float, float]) -> Scales:
+    """The lengths of a record with filtered position ``x`` and :func:`position_spread` ``spread``."""
     stroke = float(np.ptp(x))
-    resolution, position_noise = position_spread(data, x)
+    resolution, position_noise = spread
     smallest = max(10.0 * resolution, SMALLEST_DEFLECTION * stroke)
     largest = max(LARGEST_DEFLECTION * stroke, 10.0 * smallest)
     deflections = np.geomspace(smallest, largest, ELEMENTS)

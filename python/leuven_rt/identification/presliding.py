@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .._core import MAX_ELEMENTS, slip_responses
+from .._core import slip_responses
 from ..errors import InputError
 from .errors import DataError
 from .regression import LinearFit, fit_linear
@@ -42,18 +42,14 @@ def element_deflections(x: Array, Delta: Array) -> Array:
     """φᵢ(x) = (x − ζᵢ)/Δᵢ of every element (columns) at every sample (rows), each element
     starting relaxed at x[0] and slipping (ζᵢ follows x at distance Δᵢ) when over-stretched.
 
-    The elements are independent: gms-core's slip rule runs them (``SlipRegressor``), at most
-    MAX_ELEMENTS at a time."""
+    gms-core's slip rule runs them (``SlipRegressor``); it checks the values and names the
+    offending sample or element."""
     x = np.ascontiguousarray(x, dtype=np.float64)
     Delta = np.ascontiguousarray(Delta, dtype=np.float64)
-    if Delta.ndim != 1:
-        raise InputError(f"`Delta` must be one-dimensional, got shape {Delta.shape}")
-    with np.errstate(divide="ignore", over="ignore"):
-        bad = np.flatnonzero(~(np.isfinite(Delta) & (Delta > 0.0) & np.isfinite(1.0 / Delta)))
-    if bad.size:
-        raise InputError(f"`Delta[{bad[0]}]` must be finite and > 0 (and 1/Delta finite), got {float(Delta[bad[0]])!r}")
-    parts = [slip_responses(x, Delta[first : first + MAX_ELEMENTS]) for first in range(0, Delta.size, MAX_ELEMENTS)]
-    return np.hstack(parts) if parts else np.empty((x.size, 0))
+    for name, values in (("x", x), ("Delta", Delta)):
+        if values.ndim != 1:
+            raise InputError(f"`{name}` must be one-dimensional, got shape {values.shape}")
+    return slip_responses(x, Delta)
 
 
 @dataclass(frozen=True, eq=False)
