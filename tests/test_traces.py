@@ -93,6 +93,10 @@ def test_element_deflections_refuse_bad_input() -> None:
         element_deflections(x, np.r_[np.full(35, 1e-6), -1.0])
     with pytest.raises(InputError, match=r"`Delta\[0\]` .*, got 1e-310"):
         element_deflections(x, np.array([1e-310]))
+    with pytest.raises(InputError, match=r"`x` must be one-dimensional, got shape \(1, 2000\)"):
+        element_deflections(x.reshape(1, -1), np.array([1e-6]))
+    with pytest.raises(InputError, match=r"`Delta` must be one-dimensional, got shape \(1, 1\)"):
+        element_deflections(x, np.array([[1e-6]]))
     x[3] = np.inf
     with pytest.raises(InputError, match="`x` must be finite, got inf at sample 3"):
         element_deflections(x, np.array([1e-6]))
