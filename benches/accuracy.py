@@ -1,6 +1,6 @@
 """Prints the explicit-vs-implicit accuracy tables: ``python benches/accuracy.py``.
 
-The numbers come from :func:`leuven_rt.accuracy.full_report` (velocity- and force-driven);
+The numbers come from :func:`leuven_rt.studies.accuracy.full_report` (velocity- and force-driven);
 the README quotes this output.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from leuven_rt.accuracy import full_report
+from leuven_rt.studies.accuracy import full_report
 
 
 def main() -> None:

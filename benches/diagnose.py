@@ -14,7 +14,7 @@ import leuven_rt as lr
 from leuven_rt.discrepancy.hidden import make_hidden
 
 TRUTH = ("coulomb", "viscous", "presliding_hysteresis", "position_dependence", "inertia")
-EMPS = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "emps" / "DATA_EMPS.mat"
+EMPS = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "emps" / "DATA_EMPS.mat"
 
 
 def timed(data: object, label: str) -> None:

@@ -4,7 +4,7 @@ noise floor (target: within 1.2x for in-catalogue cases)?
 
     python benches/hidden.py [--seeds 4]
 
-Single effects at dt = 0.8 ms, pairs at 0.4 ms, as in tests/test_discrepancy_hidden.py; a few
+Single effects at dt = 0.8 ms, pairs at 0.4 ms, as in tests/discrepancy/test_discrepancy_hidden.py; a few
 minutes on a 2-core machine.
 """
 

@@ -79,7 +79,7 @@ def velocity_signals(draw: st.DrawFn, samples: int, scale: float) -> np.ndarray:
             cycles = draw(st.floats(0.2, 6.0))
             # Phases start at 0 or away from it; a first sample like 1e-189 (a tiny but nonzero
             # deflection) is covered on its own by
-            # test_agreement.py::test_implicit_step_after_a_tiny_deflection_finds_the_root.
+            # core/test_agreement.py::test_implicit_step_after_a_tiny_deflection_finds_the_root.
             phase = draw(st.sampled_from([0.0]) | st.floats(0.01, 2 * np.pi))
             piece = amplitude * np.sin(phase + 2 * np.pi * cycles * np.arange(length) / max(length, 1))
         elif kind == "plateau":
@@ -92,6 +92,18 @@ def velocity_signals(draw: st.DrawFn, samples: int, scale: float) -> np.ndarray:
             piece = -np.resize(previous[::-1], length)
         pieces.append(piece)
     return np.concatenate(pieces)
+
+
+#: Samples of :func:`small_log`.
+SMALL_LOG_SAMPLES = 400
+
+
+def small_log(**changes: Any) -> dict[str, Any]:
+    """A valid small log (1 kHz, a slow sine) as columns, with ``changes`` applied (None drops one)."""
+    t = np.arange(SMALL_LOG_SAMPLES) * 1e-3
+    base: dict[str, Any] = {"t": t, "x": 1e-3 * np.sin(2 * np.pi * t), "f": np.cos(2 * np.pi * t)}
+    base.update(changes)
+    return {key: value for key, value in base.items() if value is not None}
 
 
 def max_relative_error(a: np.ndarray, b: np.ndarray) -> float:

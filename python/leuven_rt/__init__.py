@@ -8,20 +8,43 @@
 - :func:`diagnose`: name the effects a friction model misses in a log (:mod:`leuven_rt.discrepancy`).
 - :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
 - :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
-- :mod:`leuven_rt.reference`: the same discrete step in plain numpy, written as the specification.
+- :mod:`leuven_rt.reference`: the same discrete steps in plain numpy, written as the specification.
+
+The package's rooms: this public face at the top (with :mod:`.errors`), :mod:`.data` (logs in,
+signals out), the two workflows :mod:`.identification` and :mod:`.discrepancy`,
+:mod:`.reference` (the numpy oracles) and :mod:`.studies` (what the command line reproduces).
+The workflows and the oracles load on first use, so that ``import leuven_rt`` stays light.
 """
 
-from . import reference
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from ._core import MAX_ELEMENTS, MAX_ITERATIONS
 from .compensation import Compensator
-from .discrepancy import Diagnosis, diagnose
-from .errors import DivergenceError, InputError, ParameterError
-from .identification import DataError, IdentificationResult, MotionData, identify
+from .errors import DataError, DivergenceError, InputError, ParameterError
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
 from .model import LeuvenModel, ModelState, Trace
 from .online import OnlineIdentifier
 from .params import Params
 from .simulation import simulate, simulate_position
+
+if TYPE_CHECKING:
+    from . import reference
+    from .data.records import MotionData
+    from .discrepancy.diagnose import diagnose
+    from .discrepancy.report import Diagnosis
+    from .identification import IdentificationResult, identify
+
+#: Names served on first use, and the module each comes from.
+_LAZY = {
+    "Diagnosis": "discrepancy",
+    "diagnose": "discrepancy",
+    "IdentificationResult": "identification",
+    "identify": "identification",
+    "MotionData": "data.records",
+}
 
 __all__ = [
     "MAX_ELEMENTS",
@@ -49,3 +72,17 @@ __all__ = [
     "simulate_mass",
     "simulate_position",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "reference":
+        return importlib.import_module(f"{__name__}.reference")
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+        globals()[name] = value  # later look-ups skip this function
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

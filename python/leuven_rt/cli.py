@@ -9,20 +9,9 @@ from pathlib import Path
 
 
 def _demo(arguments: argparse.Namespace) -> int:
-    from .demo import run_demo
+    from .studies.demo import run_demo, run_story
 
-    result = run_demo(Path(arguments.out))
-    params = result.params
-    print("Presliding-to-sliding scenario (position input, 10 kHz, implicit step)")
-    print(f"  parameters: Fc = {params.Fc} N, Fs = {params.Fs} N, Vs = {params.Vs} m/s, "
-          f"N = {params.elements} Maxwell-slip elements up to {max(params.Delta) * 1e6:.0f} µm")
-    print(f"  samples: {result.samples}")
-    print(f"  largest |F| while the amplitude stays below 5 µm (presliding): {result.presliding_peak:.3f} N")
-    print(f"  median |F| over the last second (sliding): {result.sliding_force:.3f} N")
-    print(f"  largest |F| overall: {result.peak_force:.3f} N")
-    print(f"  figure: {result.figure}")
-    from .discrepancy.story import run_story
-
+    print(run_demo(Path(arguments.out)).text())
     print()
     print(run_story(Path(arguments.out), progress=True).text())
     return 0
@@ -46,14 +35,14 @@ def _diagnose(arguments: argparse.Namespace) -> int:
 
 
 def _accuracy(arguments: argparse.Namespace) -> int:
-    from .accuracy import full_report
+    from .studies.accuracy import full_report
 
     print(full_report())
     return 0
 
 
 def _figures(arguments: argparse.Namespace) -> int:
-    from .figures import write_figures
+    from .studies.figures import write_figures
 
     for report in write_figures(Path(arguments.out), quick=arguments.quick):
         print("\n".join(report.lines))
@@ -89,11 +78,9 @@ def _identify(arguments: argparse.Namespace) -> int:
 
 
 def _control(arguments: argparse.Namespace) -> int:
-    from .closed_loop import compare, plot, report
+    from .studies.closed_loop import run
 
-    comparison = compare()
-    print(report(comparison))
-    print(f"figure: {plot(comparison, Path(arguments.out) / 'closed_loop.png')}")
+    print(run(Path(arguments.out)))
     return 0
 
 

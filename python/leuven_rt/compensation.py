@@ -10,13 +10,11 @@ force carries over (see crates/gms-core/src/compensator.rs).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import Any
-
 from . import _core
+from ._checks import check_dt
+from ._typing import ParamsLike
 from .errors import InputError
-from .inputs import check_dt
-from .params import Params, as_params
+from .params import as_params
 
 MODES = ("feedforward", "observer")
 
@@ -30,12 +28,12 @@ class Compensator(_core.CompensatorEngine):
     ``reset()``: back to rest. ``output``: the last force returned.
     """
 
-    def __new__(cls, params: Params | Mapping[str, Any], dt: float, mode: str = "feedforward") -> Compensator:
+    def __new__(cls, params: ParamsLike, dt: float, mode: str = "feedforward") -> Compensator:
         if mode not in MODES:
             raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
         return super().__new__(cls, as_params(params), check_dt(dt), str(mode))
 
-    def set_params(self, params: Params | Mapping[str, Any]) -> None:
+    def set_params(self, params: ParamsLike) -> None:
         """Swaps in new parameters between two samples; the hysteresis force carries over."""
         super().set_params(as_params(params))
 

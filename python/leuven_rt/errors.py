@@ -1,9 +1,41 @@
-"""The exceptions of leuven_rt; all are ``ValueError`` subclasses.
+"""Every exception and warning of leuven_rt.
 
-They are defined in the Rust extension, so that the core and the Python modules raise the same
-classes.
+The three the Rust core raises (:class:`ParameterError`, :class:`InputError`,
+:class:`DivergenceError`) are defined in the extension, so that the core and the Python modules
+raise the same classes; the rest are Python-only and subclass them or ``ValueError``, so that
+``except ValueError`` (or ``except InputError`` for bad data) catches every refusal.
 """
+
+from __future__ import annotations
 
 from ._core import DivergenceError, InputError, ParameterError
 
-__all__ = ["DivergenceError", "InputError", "ParameterError"]
+__all__ = [
+    "DataError",
+    "DivergenceError",
+    "InputError",
+    "ParameterError",
+    "ResamplingWarning",
+    "StackOverflowError",
+]
+
+
+class DataError(InputError):
+    """Measured data that cannot be identified from: the message names the column and says what
+    was expected and what came."""
+
+
+class ResamplingWarning(UserWarning):
+    """The time stamps were not uniform, so the data was interpolated onto a uniform grid."""
+
+
+class StackOverflowError(ValueError):
+    """A stack of extrema of the original Leuven model (:mod:`leuven_rt.reference.original_leuven`)
+    is full: more reversals without a closed loop than its depth."""
+
+    def __init__(self, stack: str, sample: int, depth: int) -> None:
+        self.stack, self.sample, self.depth = stack, sample, depth
+        super().__init__(
+            f"the stack of {stack} overflowed at sample {sample}: it holds depth = {depth} extrema "
+            "and the motion reversed once more without closing a loop"
+        )

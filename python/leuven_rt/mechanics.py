@@ -3,7 +3,7 @@
 m·ẍ = u(t) − Ff + k·(a(t) − x): a free mass (``stiffness=0``), a spring to ground
 (``drive_speed=0``) or the stick-slip rig, whose spring's far end a(t) = drive_speed·t is dragged
 at constant speed. How the step integrates the mechanics and why it is stable at any dt is
-written in the module docs of ``crates/gms-core/src/mechanics``; :mod:`leuven_rt.reference_mechanics`
+written in the module docs of ``crates/gms-core/src/mechanics``; :mod:`leuven_rt.reference.mechanics`
 is the same discrete step in numpy.
 
 - :class:`MassSystem`: stateful channels. ``step(u, dt) -> (friction, position, velocity)`` is the
@@ -14,35 +14,42 @@ is the same discrete step in numpy.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from . import _core
+from ._checks import as_channel_signal, as_channels, as_signal, check_channels, check_dt, check_scheme
+from ._typing import FloatArray, ParamsLike
 from .errors import InputError
-from .inputs import as_channel_signal, as_channels, as_signal, check_channels, check_dt, check_scheme
-from .params import Params, as_params
-from .reference_mechanics import MassTrajectory
+from .params import as_params
 
 __all__ = ["MassState", "MassSystem", "MassTrajectory", "simulate_mass"]
+
+
+@dataclass(frozen=True)
+class MassTrajectory:
+    """Friction force over each step, position and velocity at its end; each (T,) or (B, T)."""
+
+    friction: FloatArray
+    position: FloatArray
+    velocity: FloatArray
 
 
 @dataclass(frozen=True, eq=False)
 class MassState:
     """A checkpoint of every channel (copies)."""
 
-    position: NDArray[np.float64]
+    position: FloatArray
     """x of each channel [m], shape (B,)."""
-    velocity: NDArray[np.float64]
+    velocity: FloatArray
     """v of each channel [m/s], shape (B,)."""
-    anchor: NDArray[np.float64]
+    anchor: FloatArray
     """Position of the spring's far end [m], shape (B,)."""
-    z: NDArray[np.float64]
+    z: FloatArray
     """Friction deflection z [m], shape (B,)."""
-    zeta: NDArray[np.float64]
+    zeta: FloatArray
     """Maxwell-slip element positions ζ, shape (B, N); (B, 0) for linear hysteresis."""
 
 
@@ -55,7 +62,7 @@ class MassSystem(_core.MassEngine):
 
     def __new__(
         cls,
-        params: Params | Mapping[str, Any],
+        params: ParamsLike,
         mass: float,
         stiffness: float = 0.0,
         drive_speed: float = 0.0,
@@ -125,7 +132,7 @@ class MassSystem(_core.MassEngine):
 
 
 def simulate_mass(
-    params: Params | Mapping[str, Any],
+    params: ParamsLike,
     u: ArrayLike,
     dt: float,
     mass: float,

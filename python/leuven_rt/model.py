@@ -2,28 +2,27 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
+from ._checks import as_channel_signal, as_channels, check_channels, check_dt, check_scheme
+from ._typing import FloatArray, ParamsLike
 from .errors import InputError
-from .inputs import as_channel_signal, as_channels, check_channels, check_dt, check_scheme
-from .params import Params, as_params
+from .params import as_params
 
 
 @dataclass(frozen=True, eq=False)
 class ModelState:
     """A checkpoint of every channel: copies, safe to keep while the model runs on."""
 
-    z: NDArray[np.float64]
+    z: FloatArray
     """Deflection z of each channel, shape (B,)."""
-    zeta: NDArray[np.float64]
+    zeta: FloatArray
     """Position ζ of each Maxwell-slip element, shape (B, N); (B, 0) for linear hysteresis."""
-    last_position: NDArray[np.float64]
+    last_position: FloatArray
     """Position of the previous position-input step, shape (B,); meaningful where has_last_position."""
     has_last_position: NDArray[np.bool_]
     """Whether a channel has seen a position-input step since it was relaxed, shape (B,)."""
@@ -33,9 +32,9 @@ class ModelState:
 class Trace:
     """A run of one channel over positions, with the state the elements are driven by."""
 
-    force: NDArray[np.float64]
+    force: FloatArray
     """Friction force after every sample [N]."""
-    z: NDArray[np.float64]
+    z: FloatArray
     """Deflection z of the state equation after every sample [m]."""
 
 
@@ -49,26 +48,26 @@ class LeuvenModel(_core.Engine):
     """
 
     def __new__(
-        cls, params: Params | Mapping[str, Any], channels: int = 1, scheme: str = "implicit"
+        cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit"
     ) -> LeuvenModel:
         return super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
 
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
 
-    def step_channels(self, v: ArrayLike, dt: float) -> NDArray[np.float64]:
+    def step_channels(self, v: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with velocities ``v`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(v, "v", self.channels), check_dt(dt), False)
 
-    def step_channels_position(self, x: ArrayLike, dt: float) -> NDArray[np.float64]:
+    def step_channels_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with positions ``x`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(x, "x", self.channels), check_dt(dt), True)
 
-    def run(self, v: ArrayLike, dt: float) -> NDArray[np.float64]:
+    def run(self, v: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over velocities ``v``: (T,) for one channel or (B, T)."""
         return self._run_signal(v, "v", dt)
 
-    def run_position(self, x: ArrayLike, dt: float) -> NDArray[np.float64]:
+    def run_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over positions ``x``: (T,) for one channel or (B, T)."""
         return self._run_signal(x, "x", dt)
 
@@ -83,7 +82,7 @@ class LeuvenModel(_core.Engine):
         force, z = self._run_position_deflection(np.ascontiguousarray(array[0]), check_dt(dt))
         return Trace(force, z)
 
-    def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> NDArray[np.float64]:
+    def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> FloatArray:
         array, one_dimensional = as_channel_signal(signal, name, self.channels)
         out = self._run(array, check_dt(dt), name == "x")
         return out[0] if one_dimensional else out

@@ -6,7 +6,8 @@ presliding identification, with Δᵢ pre-assigned). The estimator runs in gms-c
 allocation-free, the same code a control loop would run): :class:`OnlineIdentifier` is stepped
 sample by sample (``update``) or run over a whole log (``run``, GIL released).
 
-:func:`regressors` builds the same regressors in numpy, for batch least squares and checks.
+:func:`leuven_rt.reference.online.regressors` builds the same regressors in numpy, for batch least
+squares and checks.
 
 Identifiability: in steady sliding every ψᵢ = sgn(v), so sliding data only determine
 ``Fc + sum(W)``; the split between them, and among the Wᵢ, needs reversals of several
@@ -17,16 +18,16 @@ leave undetermined, and ``max_trace`` stops its wind-up under forgetting.
 from __future__ import annotations
 
 import numbers
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from . import _core
+from ._checks import as_log, as_real_list
 from ._core import MAX_ELEMENTS
+from ._typing import FloatArray
 from .errors import InputError, ParameterError
-from .inputs import as_signal
 
 #: Names of the terms after the N element weights, in the order of the estimate.
 EXTRA_TERMS = ("Fc", "sigma2", "offset")
@@ -36,37 +37,6 @@ def _real(name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ParameterError(f"`{name}` must be a real number, got {value!r}")
     return float(value)
-
-
-def _vector(name: str, values: Any, length: int | None = None) -> list[float]:
-    if isinstance(values, (str, bytes)) or not (
-        isinstance(values, Sequence) or hasattr(values, "__array__")
-    ):
-        raise ParameterError(f"`{name}` must be a sequence of real numbers, got {values!r}")
-    array = np.asarray(values)
-    if array.ndim != 1 or array.dtype.kind not in "iuf":
-        raise ParameterError(
-            f"`{name}` must be a flat sequence of real numbers, got {values!r}"
-        )
-    if length is not None and array.shape[0] != length:
-        raise ParameterError(f"`{name}` must have {length} values, got {array.shape[0]}")
-    return [float(value) for value in array]
-
-
-def _log(x: ArrayLike, v: ArrayLike, f: ArrayLike | None) -> list[NDArray[np.float64]]:
-    """x, v (and f) as finite float64 arrays of one common shape (T,), T ≥ 1."""
-    named = [("x", x), ("v", v)] + ([("f", f)] if f is not None else [])
-    arrays = []
-    for name, values in named:
-        array, one_dimensional = as_signal(values, name)
-        if not one_dimensional:
-            raise InputError(f"`{name}` must have shape (T,), got shape {np.shape(values)}")
-        arrays.append(array[0])
-    length = arrays[0].shape[0]
-    for (name, _), array in zip(named[1:], arrays[1:]):
-        if array.shape[0] != length:
-            raise InputError(f"`{name}` must have the length of `x`, {length}, got {array.shape[0]}")
-    return arrays
 
 
 def _scalar(name: str, value: Any) -> float:
@@ -99,11 +69,11 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         max_trace: float | None = None,
         initial: ArrayLike | None = None,
     ) -> OnlineIdentifier:
-        delta = _vector("Delta", Delta)
+        delta = as_real_list("Delta", Delta)
         if not 1 <= len(delta) <= MAX_ELEMENTS:
             raise ParameterError(f"`Delta` must have 1 to {MAX_ELEMENTS} elements, got {len(delta)}")
         parameters = len(delta) + len(EXTRA_TERMS)
-        start = [0.0] * parameters if initial is None else _vector("initial", initial, parameters)
+        start = [0.0] * parameters if initial is None else as_real_list("initial", initial, parameters)
         if not all(np.isfinite(start)):
             raise ParameterError(f"`initial` must be finite, got {start}")
         covariance = _real("initial_covariance", initial_covariance)
@@ -120,23 +90,23 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         return tuple(f"W[{i}]" for i in range(self.elements)) + EXTRA_TERMS
 
     @property
-    def estimate(self) -> NDArray[np.float64]:
+    def estimate(self) -> FloatArray:
         """A copy of the current estimate, shape (N + 3,), in the order of :attr:`names`."""
         return self._estimate()
 
     @property
-    def covariance(self) -> NDArray[np.float64]:
+    def covariance(self) -> FloatArray:
         """A copy of the covariance P, shape (N + 3, N + 3); times the noise variance, it is the
         covariance of the estimate."""
         return self._covariance()
 
-    def run(self, x: ArrayLike, v: ArrayLike, f: ArrayLike) -> NDArray[np.float64]:
+    def run(self, x: ArrayLike, v: ArrayLike, f: ArrayLike) -> FloatArray:
         """Continues over a log of positions ``x`` [m], velocities ``v`` [m/s] and forces ``f``
         [N], each of shape (T,); returns the estimate after each sample, shape (T, N + 3).
 
         All or nothing: a rejected log leaves the identifier as it was.
         """
-        xs, vs, fs = _log(x, v, f)
+        xs, vs, fs = as_log(x, v, f)
         return self._run(xs, vs, fs)
 
     def predict(self, x: float, v: float) -> float:
@@ -170,30 +140,3 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         estimate = self.estimate
         n = self.elements
         return {"Fc": float(estimate[n] + estimate[:n].sum()), "sigma2": float(estimate[n + 1])}
-
-
-
-def regressors(Delta: ArrayLike, x: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
-    """The regressor of every sample, shape (T, N + 3): ``[ψ_0, …, ψ_{N−1}, sgn(v), v, 1]``.
-
-    Plain numpy (a loop over samples, vectorised over elements), written from the definition:
-    element i keeps its deflection x − ζᵢ within ±Δᵢ and slips beyond; ψᵢ is that deflection
-    over Δᵢ; the first position relaxes every element. ``numpy.linalg.lstsq(regressors(...), f)``
-    is the batch estimate that :class:`OnlineIdentifier` approaches.
-    """
-    delta = np.asarray(_vector("Delta", Delta), dtype=np.float64)
-    if delta.size == 0 or not (np.isfinite(delta).all() and (delta > 0).all()):
-        raise ParameterError(f"`Delta` must be at least one finite value > 0, got {delta.tolist()}")
-    xs, vs = _log(x, v, None)
-    out = np.empty((xs.shape[0], delta.size + len(EXTRA_TERMS)))
-    zeta = np.full(delta.size, xs[0])
-    for k, position in enumerate(xs):
-        stretched = position - zeta
-        deflection = np.clip(stretched, -delta, delta)
-        # Only slipping elements move (rewriting a sticking ζ as x − (x − ζ) would round).
-        zeta = np.where(deflection != stretched, position - deflection, zeta)
-        out[k, : delta.size] = deflection / delta
-    out[:, delta.size] = np.sign(vs)
-    out[:, delta.size + 1] = vs
-    out[:, delta.size + 2] = 1.0
-    return out

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from . import _core
+from ._typing import ParamsLike
 from .errors import ParameterError
 
 #: Keys that every parameter set must give.
@@ -136,7 +137,7 @@ class Params:
         return cls.from_json(Path(path).read_text(encoding="utf-8"))
 
 
-def as_params(params: Params | Mapping[str, Any]) -> Params:
+def as_params(params: ParamsLike) -> Params:
     """Accepts a :class:`Params` or a mapping of its keys."""
     if isinstance(params, Params):
         return params

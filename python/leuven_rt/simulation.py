@@ -2,20 +2,17 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import Any
-
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from . import _core
-from .inputs import as_signal, check_dt, check_scheme
-from .params import Params, as_params
+from ._checks import as_signal, check_dt, check_scheme
+from ._typing import FloatArray, ParamsLike
+from .params import as_params
 
 
 def _run(
-    params: Params | Mapping[str, Any], signal: ArrayLike, name: str, dt: float, scheme: str
-) -> NDArray[np.float64]:
+    params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: str
+) -> FloatArray:
     params = as_params(params)
     array, one_dimensional = as_signal(signal, name)
     dt = check_dt(dt)
@@ -25,8 +22,8 @@ def _run(
 
 
 def simulate(
-    params: Params | Mapping[str, Any], v: ArrayLike, dt: float, scheme: str = "implicit"
-) -> NDArray[np.float64]:
+    params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit"
+) -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
@@ -37,7 +34,7 @@ def simulate(
 
 
 def simulate_position(
-    params: Params | Mapping[str, Any], x: ArrayLike, dt: float, scheme: str = "implicit"
-) -> NDArray[np.float64]:
+    params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit"
+) -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
     return _run(params, x, "x", dt, scheme)

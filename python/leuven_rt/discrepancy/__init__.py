@@ -5,7 +5,9 @@ is missing (the effect catalogue of DESIGN.md §3), where, and how much better t
 bank driven by the model's state), :mod:`.model` (fits),
 :mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
 :mod:`.diagnose` (the rounds), :mod:`.report` (JSON of DESIGN.md §4), :mod:`.plot` (figure),
-:mod:`.hidden` (generated data with hidden effects).
+:mod:`.hidden` (generated data with hidden effects, to test it on).
+
+It works from the data toolkit :mod:`leuven_rt.data`, not from the identification workflow.
 """
 
 from .diagnose import DEFAULT_BASELINE, diagnose

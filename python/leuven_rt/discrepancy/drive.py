@@ -21,14 +21,12 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from ..identification.presliding import element_deflections
+from .._typing import FloatArray
+from ..data.slip import element_deflections
 from ..model import LeuvenModel
 from ..params import Params
 from .features import Features
-
-Array = NDArray[np.float64]
 
 #: The exponents n tried (the paper's transition shapes, from soft to sharp).
 EXPONENTS = (1.0, 2.0, 4.0)
@@ -42,7 +40,7 @@ class Drive:
     weights: tuple[float, ...]
     """W of every bank element (0 for an element the fit left out)."""
 
-    def deflection(self, features: Features) -> Array:
+    def deflection(self, features: Features) -> FloatArray:
         """z(t) of the state equation driven by the filtered position of ``features``."""
         weights = np.asarray(self.weights)
         # Only the ratios W/level matter: scaled to a unit level, tiny fitted weights stay valid

@@ -13,12 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial import legendre
-from numpy.typing import NDArray
 
+from .._typing import FloatArray
 from ..errors import InputError
 from .features import ELEMENTS, Features
-
-Array = NDArray[np.float64]
 
 #: Degree of the Legendre polynomials in position that scale the friction level along the stroke.
 POSITION_DEGREE = 2
@@ -32,7 +30,7 @@ class Shape:
     delta: float
 
 
-Columns = Callable[[Features, Collection[str], Shape | None], dict[str, Array]]
+Columns = Callable[[Features, Collection[str], Shape | None], dict[str, FloatArray]]
 
 
 @dataclass(frozen=True)
@@ -44,7 +42,7 @@ class Effect:
     nonnegative: tuple[str, ...] = ()
 
 
-def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
     # The levels of the negative direction move by these amounts, each level the model has; a
     # pure level shift (the same in both directions) is `offset`.
     out = {"Fc_neg_shift": np.minimum(f.sign, 0.0)}
@@ -55,13 +53,13 @@ def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict
     return out
 
 
-def _stribeck(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+def _stribeck(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
     if shape is None:
         raise ValueError("the Stribeck columns need a shape (Vs, delta)")
     return {"Fs_minus_Fc": f.sign * np.exp(-np.abs(f.v / shape.Vs) ** shape.delta)}
 
 
-def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, Array]:
+def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
     out = {}
     for degree in range(1, POSITION_DEGREE + 1):
         coefficients = np.zeros(degree + 1)

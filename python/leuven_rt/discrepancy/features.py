@@ -25,11 +25,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..identification.data import MotionData, estimate_derivatives
-from ..identification.motion import find_segments
-from ..identification.presliding import element_deflections
-
-Array = NDArray[np.float64]
+from .._typing import FloatArray
+from ..data.records import MotionData
+from ..data.segments import find_segments
+from ..data.signals import estimate_derivatives
+from ..data.slip import element_deflections
 
 #: Elements of the Maxwell-slip bank.
 ELEMENTS = 12
@@ -54,7 +54,7 @@ SMALLEST_DEFLECTION = 1e-4
 class Scales:
     """The lengths a fitted model's columns depend on: reused to predict another record."""
 
-    deflections: Array
+    deflections: FloatArray
     play: float
     """Half-width of the play that reads the direction of motion [m]."""
     middle: float
@@ -65,30 +65,30 @@ class Scales:
 class Features:
     """Signals on every sample, and which samples the fits may use."""
 
-    t: Array
-    force: Array
+    t: FloatArray
+    force: FloatArray
     """The measured force to be explained [N]."""
-    x: Array
+    x: FloatArray
     """Filtered position [m]."""
-    v: Array
-    a: Array
-    sign: Array
+    v: FloatArray
+    a: FloatArray
+    sign: FloatArray
     """sgn(v): the direction of motion, in [−1, 1], flipping over ± the position noise (turns
     inside one quantization step placed by the filtered position)."""
-    position: Array
+    position: FloatArray
     """Position scaled to [−1, 1] over the stroke."""
-    bank: Array
+    bank: FloatArray
     """(samples, ELEMENTS): normalised element deflections eⱼ/Δⱼ in [−1, 1], driven by the
     filtered position (by z in the features a :class:`~.drive.Drive` returns)."""
     scales: Scales
-    travel: Array
+    travel: FloatArray
     """Distance travelled since the last reversal [m]."""
     usable: NDArray[np.bool_]
     """False on the filters' edge transients at both ends."""
     dt: float
 
 
-def direction_of_motion(raw: Array, filtered: Array, play: float, spread: tuple[float, float]) -> Array:
+def direction_of_motion(raw: FloatArray, filtered: FloatArray, play: float, spread: tuple[float, float]) -> FloatArray:
     """sgn(v) in [−1, 1] from the recorded position ``raw`` (and its zero-phase ``filtered``
     version, for the turns inside one quantization step when the position's ``spread``,
     (resolution, noise) from :func:`position_spread`, says it is quantization-limited)."""
@@ -132,7 +132,7 @@ def compute_features(data: MotionData, scales: Scales | None = None) -> Features
     )  # fmt: skip
 
 
-def position_spread(data: MotionData, x: Array) -> tuple[float, float]:
+def position_spread(data: MotionData, x: FloatArray) -> tuple[float, float]:
     """The position's quantization step and its noise (at least what quantization alone gives)."""
     steps = np.abs(np.diff(data.x))
     resolution = float(np.min(steps[steps > 0]))
@@ -141,7 +141,7 @@ def position_spread(data: MotionData, x: Array) -> tuple[float, float]:
     return resolution, max(noise, 0.3 * resolution)
 
 
-def measure_scales(x: Array, spread: tuple[float, float]) -> Scales:
+def measure_scales(x: FloatArray, spread: tuple[float, float]) -> Scales:
     """The lengths of a record with filtered position ``x`` and :func:`position_spread` ``spread``."""
     stroke = float(np.ptp(x))
     resolution, position_noise = spread

@@ -1,7 +1,7 @@
 """Generated logs in which catalogue effects are hidden, to test the discrepancy workflow.
 
 The friction comes from the project's simulator (:func:`leuven_rt.simulate_position`) driven by
-the excitation of :mod:`leuven_rt.synthetic`; the effects named in ``truth`` switch its parts on:
+the excitation of :mod:`leuven_rt.data.synthetic`; the effects named in ``truth`` switch its parts on:
 
 - ``coulomb`` is always there (the model needs Fc > 0); ``viscous``: σ2 = :data:`SIGMA2`;
 - ``stribeck``: Fs = 1.5·Fc (otherwise Fs = Fc); ``asymmetry``: the −x levels at 0.7 of the +x
@@ -23,15 +23,13 @@ from collections.abc import Collection
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from ..identification.data import MotionData
+from .._typing import FloatArray
+from ..data.records import MotionData
+from ..data.synthetic import excitation
 from ..params import Params
 from ..simulation import simulate_position
-from ..synthetic import excitation
 from .effects import parse_effects
-
-Array = NDArray[np.float64]
 
 FC = 1.0  # N
 SIGMA2 = 10.0  # N·s/m
@@ -50,11 +48,11 @@ class HiddenData:
     data: MotionData
     truth: tuple[str, ...]
     drift: bool
-    force_true: Array
+    force_true: FloatArray
     noise_std: float
-    x_true: Array
+    x_true: FloatArray
     """The position before quantization [m]."""
-    direction: Array
+    direction: FloatArray
     """The direction of motion the friction's Coulomb part follows, in [−1, 1]."""
 
 

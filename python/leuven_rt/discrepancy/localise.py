@@ -9,9 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .._typing import FloatArray
 from .features import Features
-
-Array = NDArray[np.float64]
 
 #: Regions smaller than this share of the usable samples are not reported.
 MIN_SHARE = 0.03
@@ -53,7 +52,7 @@ def region_masks(features: Features) -> dict[str, NDArray[np.bool_]]:
     return {name: mask & usable for name, mask in masks.items() if np.mean(mask[usable]) >= MIN_SHARE}
 
 
-def regions(features: Features, residual: Array) -> list[Region]:
+def regions(features: Features, residual: FloatArray) -> list[Region]:
     """Residual statistics per region; ``residual`` covers every sample."""
     total = int(np.count_nonzero(features.usable))
     out = []
@@ -68,7 +67,7 @@ def _describe(name: str, share: float, before: float, after: float | None) -> st
     return f"{name}: {numbers} over {share:.0%} of the samples"
 
 
-def where_improved(features: Features, before: Array, after: Array) -> str:
+def where_improved(features: Features, before: FloatArray, after: FloatArray) -> str:
     """The region where the residual's mean square dropped most against the whole record, or
     "everywhere" when no region stands out."""
     usable = features.usable
@@ -87,7 +86,7 @@ def where_improved(features: Features, before: Array, after: Array) -> str:
                      float(np.sqrt(np.mean(after[mask] ** 2))))  # fmt: skip
 
 
-def where_unexplained(features: Features, residual: Array, noise_std: float) -> str:
+def where_unexplained(features: Features, residual: FloatArray, noise_std: float) -> str:
     """The region with the largest excess of the residual over the noise (mean square − σ²)."""
     usable = features.usable
     overall = float(np.mean(residual[usable] ** 2)) - noise_std**2

@@ -18,12 +18,12 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import minimize
 
-from ..identification.regression import fit_linear
+from .._typing import FloatArray
+from ..data.regression import fit_linear
 from .drive import EXPONENTS, Drive
 from .effects import CATALOGUE, Shape
 from .features import Features
 
-Array = NDArray[np.float64]
 Rows = NDArray[np.bool_]
 
 #: Bounds of the Stribeck exponent δ searched.
@@ -42,10 +42,10 @@ class ModelFit:
     shape: Shape | None
     drive: Drive | None = None
 
-    def predict(self, features: Features) -> Array:
+    def predict(self, features: Features) -> FloatArray:
         return self.predict_columns(self.drive.apply(features) if self.drive is not None else features)
 
-    def predict_columns(self, features: Features) -> Array:
+    def predict_columns(self, features: Features) -> FloatArray:
         """The prediction on ``features`` as they are (already driven)."""
         columns = design(self.effects, features, self.shape)
         prediction = np.zeros_like(features.force)
@@ -69,8 +69,8 @@ class ModelFit:
         return out
 
 
-def design(effects: Sequence[str], features: Features, shape: Shape | None) -> dict[str, Array]:
-    columns: dict[str, Array] = {}
+def design(effects: Sequence[str], features: Features, shape: Shape | None) -> dict[str, FloatArray]:
+    columns: dict[str, FloatArray] = {}
     for name in effects:
         columns.update(CATALOGUE[name].columns(features, effects, shape))
     return columns
@@ -141,7 +141,7 @@ def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shap
     target, sign, speed = features.force[rows], features.sign[rows], np.abs(features.v[rows])
     gram, moment = matrix.T @ matrix, matrix.T @ target
 
-    def cost(p: Array) -> float:
+    def cost(p: FloatArray) -> float:
         column = sign * np.exp(-((speed / np.exp(np.clip(p[0], *bounds))) ** np.clip(p[1], *DELTA_RANGE)))
         cross = matrix.T @ column
         system = np.block([[gram, cross[:, None]], [cross[None, :], np.array([[column @ column]])]])

@@ -6,23 +6,18 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .localise import region_masks  # noqa: E402
-from .report import Diagnosis  # noqa: E402
+from .._plot import figure, save
+from .localise import region_masks
+from .report import Diagnosis
 
 
 def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     f = diagnosis.features
     usable = f.usable
     labels = ["baseline"] + [f"+ {step.effect}" for step in diagnosis.steps]
-    figure, axes = plt.subplots(2, 2, figsize=(13, 8))
+    drawing, axes = figure(2, 2, size=(13, 8))
     by_time, by_velocity, by_position, by_travel = axes.ravel()
     worst = max(diagnosis.regions_before, key=lambda region: region.rms).name
     marked = region_masks(f)[worst]
@@ -47,9 +42,7 @@ def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
     for axis in axes.ravel():
         axis.grid(alpha=0.3)
         axis.legend(fontsize=7, markerscale=8, loc="upper right")
-    figure.suptitle(f"diagnose: rms {diagnosis.rms_before:.3g} N -> {diagnosis.rms_after:.3g} N "
+    drawing.suptitle(f"diagnose: rms {diagnosis.rms_before:.3g} N -> {diagnosis.rms_after:.3g} N "
                     f"(noise floor {diagnosis.noise_std:.3g} N)")  # fmt: skip
-    figure.tight_layout()
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    drawing.tight_layout()
+    return save(drawing, path, dpi=110)

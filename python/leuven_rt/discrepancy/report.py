@@ -7,9 +7,7 @@ import json
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-from numpy.typing import NDArray
-
+from .._typing import FloatArray
 from .features import Features
 from .localise import Region
 from .model import ModelFit
@@ -40,7 +38,7 @@ class Diagnosis:
     regions_before: list[Region]
     regions_after: list[Region]
     features: Features = field(repr=False)
-    residuals: list[NDArray[np.float64]] = field(repr=False)
+    residuals: list[FloatArray] = field(repr=False)
     """In-sample residual of the baseline, then after each step (every sample)."""
 
     @property

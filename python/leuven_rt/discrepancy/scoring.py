@@ -16,11 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .._typing import FloatArray
 from ..errors import InputError
 from .features import Features
 from .model import fit_model
-
-Array = NDArray[np.float64]
 
 #: Contiguous blocks of the cross-validation.
 FOLDS = 4
@@ -40,9 +39,9 @@ TIE = 0.1
 @dataclass(frozen=True, eq=False)
 class Score:
     effects: tuple[str, ...]
-    held_out: Array
+    held_out: FloatArray
     """Held-out residual (force − prediction) on every usable sample, block by block."""
-    fold_mse: Array
+    fold_mse: FloatArray
     coefficients: int
 
     @property

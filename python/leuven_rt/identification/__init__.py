@@ -2,18 +2,20 @@
 
 - :func:`identify` (re-exported as ``leuven_rt.identify``): the whole model from a log, with a
   report (errors per stage, held-out error, conditioning, warnings);
-- building blocks, reusable by other fits: :mod:`.data` (loading, validation, zero-phase
-  derivatives), :mod:`.regression` (linear least squares on named regressor columns),
-  :mod:`.inverse_model` (IDIM-LS: inertia, viscous, Coulomb, offset, as in the EMPS benchmark),
-  :mod:`.motion` (reversals, presliding range), :mod:`.sliding`, :mod:`.presliding`,
-  :mod:`.refine` (simulation-error fits through the Rust core), :mod:`.report`.
+- the stages: :mod:`.inverse_model` (IDIM-LS: inertia, viscous, Coulomb, offset, as in the EMPS
+  benchmark), :mod:`.sliding`, :mod:`.presliding`, :mod:`.refine` (simulation-error fits through
+  the Rust core), :mod:`.pipeline` (the order they run in), :mod:`.report`.
+
+The data toolkit it works from (loading, derivatives, reversals, regression) is
+:mod:`leuven_rt.data`; its names are re-exported here as before.
 """
 
-from .data import MotionData, as_motion_data, estimate_derivatives, load_columns
-from .errors import DataError, ResamplingWarning
+from ..data.records import MotionData, as_motion_data, load_columns
+from ..data.regression import LinearFit, fit_linear
+from ..data.signals import estimate_derivatives
+from ..errors import DataError, ResamplingWarning
 from .inverse_model import REGRESSORS, RIGID_BODY, fit_inverse_model
 from .pipeline import identify
-from .regression import LinearFit, fit_linear
 from .report import IdentificationReport, IdentificationResult, Stage
 
 __all__ = [

@@ -16,17 +16,15 @@ import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
-from numpy.typing import NDArray
-from scipy import signal
 
-from .data import Derivatives, MotionData, estimate_derivatives
-from .errors import DataError
-from .regression import LinearFit, fit_linear
-
-Array = NDArray[np.float64]
+from .._typing import FloatArray
+from ..data.records import MotionData
+from ..data.regression import LinearFit, fit_linear
+from ..data.signals import Derivatives, decimate, estimate_derivatives
+from ..errors import DataError
 
 #: Regressor columns of the inverse model, by the name of their coefficient.
-REGRESSORS: dict[str, Callable[[Derivatives], Array]] = {
+REGRESSORS: dict[str, Callable[[Derivatives], FloatArray]] = {
     "M": lambda d: d.a,  # inertia: mass times acceleration
     "Fv": lambda d: d.v,  # viscous
     "Fc": lambda d: np.sign(d.v),  # Coulomb
@@ -39,14 +37,6 @@ REGRESSORS: dict[str, Callable[[Derivatives], Array]] = {
 
 #: The EMPS benchmark's reference model: force = M·q̈ + Fv·q̇ + Fc·sign(q̇) + offset.
 RIGID_BODY = ("M", "Fv", "Fc", "offset")
-
-
-def decimate(values: Array, factor: int) -> Array:
-    """Low-pass (8th-order Chebyshev I at 0.8 of the new Nyquist frequency, zero phase) and keep
-    one sample in ``factor``: MATLAB's and scipy's ``decimate``."""
-    if factor == 1:
-        return values
-    return np.asarray(signal.decimate(values, factor, ftype="iir", zero_phase=True), dtype=np.float64)
 
 
 def fit_inverse_model(

@@ -21,14 +21,15 @@ import numpy as np
 from tqdm import tqdm
 
 from .._core import MAX_ELEMENTS
-from ..errors import InputError
+from .._typing import DataLike
+from ..data.records import as_motion_data
+from ..data.segments import Segments, find_segments, transition_lengths
+from ..data.signals import Derivatives, estimate_derivatives, noise_floor
+from ..errors import DataError, InputError
 from ..simulation import simulate_position
-from .data import DataLike, Derivatives, as_motion_data, estimate_derivatives
-from .errors import DataError
-from .motion import Segments, find_segments, transition_lengths
 from .presliding import CANDIDATE_ELEMENTS, fit_presliding
 from .refine import WEIGHT_MARGIN, SimulationError, fit_transition, model_params, refine_jointly
-from .report import IdentificationReport, IdentificationResult, Stage, noise_floor
+from .report import IdentificationReport, IdentificationResult, Stage
 from .sliding import fit_sliding
 
 #: Sliding samples start this many presliding ranges after a reversal.

@@ -13,14 +13,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from .._core import slip_responses
-from ..errors import InputError
-from .errors import DataError
-from .regression import LinearFit, fit_linear
-
-Array = NDArray[np.float64]
+from .._typing import FloatArray
+from ..data.regression import LinearFit, fit_linear
+from ..data.slip import element_deflections
+from ..errors import DataError
 
 #: Candidate numbers of elements when N is chosen from the data.
 CANDIDATE_ELEMENTS = tuple(range(1, 13))
@@ -33,31 +30,17 @@ IDLE_SHARE = 0.01
 MIN_PRESLIDING_SAMPLES = 20
 
 
-def equally_spaced(elements: int, presliding_range: float) -> Array:
+def equally_spaced(elements: int, presliding_range: float) -> FloatArray:
     """Δᵢ = i·range/N, i = 1..N."""
     return presliding_range * np.arange(1, elements + 1) / elements
-
-
-def element_deflections(x: Array, Delta: Array) -> Array:
-    """φᵢ(x) = (x − ζᵢ)/Δᵢ of every element (columns) at every sample (rows), each element
-    starting relaxed at x[0] and slipping (ζᵢ follows x at distance Δᵢ) when over-stretched.
-
-    gms-core's slip rule runs them (``SlipRegressor``); it checks the values and names the
-    offending sample or element."""
-    x = np.ascontiguousarray(x, dtype=np.float64)
-    Delta = np.ascontiguousarray(Delta, dtype=np.float64)
-    for name, values in (("x", x), ("Delta", Delta)):
-        if values.ndim != 1:
-            raise InputError(f"`{name}` must be one-dimensional, got shape {values.shape}")
-    return slip_responses(x, Delta)
 
 
 @dataclass(frozen=True, eq=False)
 class PreslidingFit:
     """Weights for the chosen Δ grid, and how the choice of N went."""
 
-    W: Array
-    Delta: Array
+    W: FloatArray
+    Delta: FloatArray
     viscous: float
     """Coefficient of v in presliding (σ1 + σ2 when z follows x)."""
     fit: LinearFit
@@ -69,18 +52,18 @@ class PreslidingFit:
         return int(self.W.size)
 
 
-def _regressors(phi: Array, v: Array, rows: Array) -> dict[str, Array]:
+def _regressors(phi: FloatArray, v: FloatArray, rows: FloatArray) -> dict[str, FloatArray]:
     columns = {f"W{i}": phi[rows, i] for i in range(phi.shape[1])}
     columns["viscous"] = v[rows]
     return columns
 
 
 def fit_presliding(
-    x: Array,
-    v: Array,
-    force: Array,
-    fit_rows: Array,
-    check_rows: Array,
+    x: FloatArray,
+    v: FloatArray,
+    force: FloatArray,
+    fit_rows: FloatArray,
+    check_rows: FloatArray,
     presliding_range: float,
     elements: int | Sequence[int] | None = None,
 ) -> PreslidingFit:

@@ -17,14 +17,12 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
+from .._typing import FloatArray
 from ..params import Params
 from ..simulation import simulate_position
 from .sliding import DELTA_BOUNDS, VS_DECADES, scaled_condition
-
-Array = NDArray[np.float64]
 
 #: Bounds of the transition-curve exponent n searched.
 N_BOUNDS = (0.5, 8.0)
@@ -36,7 +34,7 @@ WEIGHT_MARGIN = 1.001
 
 
 def model_params(
-    values: dict[str, float], W: Array, Delta: Array
+    values: dict[str, float], W: FloatArray, Delta: FloatArray
 ) -> Params:
     """A :class:`Params` from sliding values, n, σ1 and the elements; weights too weak to balance
     the Stribeck curve (the model's rule sum(W) > max(Fs, Fs_neg)) are scaled up to just balance
@@ -65,22 +63,22 @@ class SimulationError:
     on a thread pool: the Rust core releases the GIL, so the columns go as fast as there are cores.
     """
 
-    def __init__(self, x: Array, dt: float, force: Array, rows: Array, tick: Callable[[], None]) -> None:
+    def __init__(self, x: FloatArray, dt: float, force: FloatArray, rows: FloatArray, tick: Callable[[], None]) -> None:
         self.x, self.dt, self.force, self.rows, self.tick = x, dt, force, rows, tick
         self.evaluations = 0
         self._count = threading.Lock()
-        self._last: tuple[Array, Array] | None = None
+        self._last: tuple[FloatArray, FloatArray] | None = None
 
-    def residual(self, params: Params) -> Array:
+    def residual(self, params: Params) -> FloatArray:
         with self._count:
             self.evaluations += 1
             self.tick()
         return (simulate_position(params, self.x, self.dt) - self.force)[self.rows]
 
-    def function(self, build: Callable[[Array], Params]) -> Callable[[Array], Array]:
+    def function(self, build: Callable[[FloatArray], Params]) -> Callable[[FloatArray], FloatArray]:
         """The residual as a function of the parameter vector (the last value is kept)."""
 
-        def residual(p: Array) -> Array:
+        def residual(p: FloatArray) -> FloatArray:
             value = self.residual(build(p))
             self._last = (np.array(p, copy=True), value)
             return value
@@ -88,12 +86,12 @@ class SimulationError:
         return residual
 
     def jacobian(
-        self, build: Callable[[Array], Params], lower: Array, upper: Array
-    ) -> Callable[[Array], Array]:
+        self, build: Callable[[FloatArray], Params], lower: FloatArray, upper: FloatArray
+    ) -> Callable[[FloatArray], FloatArray]:
         """Forward differences with least_squares' step, √eps·max(1, |p|), taken backward
         where a step forward would leave the bounds."""
 
-        def jacobian(p: Array) -> Array:
+        def jacobian(p: FloatArray) -> FloatArray:
             if self._last is not None and np.array_equal(self._last[0], p):
                 base = self._last[1]
             else:
@@ -101,7 +99,7 @@ class SimulationError:
             steps = np.sqrt(np.finfo(np.float64).eps) * np.maximum(1.0, np.abs(p))
             steps = np.where(p + steps > upper, -steps, steps)
 
-            def column(j: int) -> Array:
+            def column(j: int) -> FloatArray:
                 moved = np.array(p, copy=True)
                 moved[j] += steps[j]
                 return (self.residual(build(moved)) - base) / (moved[j] - p[j])
@@ -112,8 +110,8 @@ class SimulationError:
         return jacobian
 
 
-def _solve(objective: SimulationError, build: Callable[[Array], Params], p0: Array, lower: Array, upper: Array,
-           max_evaluations: int) -> tuple[Params, Array, Array]:  # fmt: skip
+def _solve(objective: SimulationError, build: Callable[[FloatArray], Params], p0: FloatArray, lower: FloatArray,
+           upper: FloatArray, max_evaluations: int) -> tuple[Params, FloatArray, FloatArray]:  # fmt: skip
     """least_squares from ``p0`` within the bounds; the fitted params, residual and Jacobian."""
     lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
     p0 = np.clip(np.asarray(p0, dtype=float), lower, upper)
@@ -128,7 +126,7 @@ def fit_transition(base: Params, objective: SimulationError, max_evaluations: in
     fixed = {key: value for key, value in base.to_dict().items() if key not in ("n", "sigma1", "W", "Delta")}
     W, Delta = np.asarray(base.W), np.asarray(base.Delta)
 
-    def build(p: Array) -> Params:
+    def build(p: FloatArray) -> Params:
         return model_params({**fixed, "sigma1": float(p[0]), "n": float(p[1])}, W, Delta)
 
     params, residual, jacobian = _solve(objective, build, np.array([base.sigma1, base.n]),
@@ -146,7 +144,7 @@ def refine_jointly(start: Params, objective: SimulationError, max_evaluations: i
     count = Delta.size
     tiny = 1e-9 * start.Fc
 
-    def build(p: Array) -> Params:
+    def build(p: FloatArray) -> Params:
         values = dict(Fc=p[0], Fs=p[0] + p[1], Vs=float(np.exp(p[2])), delta=p[3], n=p[4], sigma1=p[5], sigma2=p[6])
         if asymmetric:
             values.update(Fc_neg=p[7 + count], Fs_neg=p[7 + count] + p[8 + count])

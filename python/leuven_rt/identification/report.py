@@ -7,18 +7,7 @@ import json
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-import numpy as np
-from numpy.typing import NDArray
-
 from ..params import Params
-
-
-def noise_floor(force: NDArray[np.float64]) -> float:
-    """Standard deviation of white noise on ``force``, from sample-to-sample differences
-    (robust: 1.4826·MAD of the differences / √2, so that steps at reversals do not count)."""
-    differences = np.diff(force)
-    spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
-    return spread / np.sqrt(2.0)
 
 
 @dataclass(frozen=True)

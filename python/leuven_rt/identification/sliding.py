@@ -12,12 +12,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
-from .errors import DataError
-
-Array = NDArray[np.float64]
+from .._typing import FloatArray
+from ..errors import DataError
 
 #: Bounds of the Stribeck shape exponent δ: outside them the curve is a step or a plateau that
 #: the data cannot tell apart from its neighbours.
@@ -52,9 +50,9 @@ class SlidingFit:
 
 
 def sliding_force(
-    v: Array, Fc: float, Fs: float, Vs: float, delta: float, sigma2: float,
+    v: FloatArray, Fc: float, Fs: float, Vs: float, delta: float, sigma2: float,
     Fc_neg: float | None = None, Fs_neg: float | None = None,
-) -> Array:  # fmt: skip
+) -> FloatArray:  # fmt: skip
     """s(v) + σ2·v, the steady-state friction force of the model."""
     negative = v < 0
     fc = np.where(negative, Fc if Fc_neg is None else Fc_neg, Fc)
@@ -62,7 +60,7 @@ def sliding_force(
     return np.sign(v) * (fc + (fs - fc) * np.exp(-np.abs(v / Vs) ** delta)) + sigma2 * v
 
 
-def scaled_condition(jacobian: Array) -> float:
+def scaled_condition(jacobian: FloatArray) -> float:
     """Condition number of J with its columns scaled to unit norm (inf when a column is zero)."""
     norms = np.linalg.norm(jacobian, axis=0)
     if np.any(norms == 0.0):
@@ -71,7 +69,7 @@ def scaled_condition(jacobian: Array) -> float:
     return float(singular[0] / singular[-1]) if singular[-1] > 0 else float("inf")
 
 
-def fit_sliding(v: Array, force: Array, asymmetric: bool = False) -> SlidingFit:
+def fit_sliding(v: FloatArray, force: FloatArray, asymmetric: bool = False) -> SlidingFit:
     """Fits the sliding curve to samples of velocity ``v`` ≠ 0 and force ``force``.
 
     Parameters are searched as Fc, Fs − Fc ≥ 0, log Vs, δ in :data:`DELTA_BOUNDS`, σ2 ≥ 0 (and
@@ -92,13 +90,13 @@ def fit_sliding(v: Array, force: Array, asymmetric: bool = False) -> SlidingFit:
     slope = max(float(slope), 0.0)
     peak = max(float(np.percentile(np.sign(v) * force, 99)), level)
 
-    def unpack(p: Array) -> dict[str, float]:
+    def unpack(p: FloatArray) -> dict[str, float]:
         out = dict(Fc=p[0], Fs=p[0] + p[1], Vs=float(np.exp(p[2])), delta=p[3], sigma2=p[4])
         if asymmetric:
             out.update(Fc_neg=p[5], Fs_neg=p[5] + p[6])
         return out
 
-    def residual(p: Array) -> Array:
+    def residual(p: FloatArray) -> FloatArray:
         return sliding_force(v, **unpack(p)) - force
 
     # Vs is searched within three decades of the measured speeds: beyond them the data says

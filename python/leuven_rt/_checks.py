@@ -1,0 +1,132 @@
+"""Checks shared by every entry point that takes signals, step sizes and scheme names.
+
+The Rust bindings and the numpy reference both go through these, so the same bad input gets the
+same error from either.
+"""
+
+from __future__ import annotations
+
+import numbers
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._typing import FloatArray
+from .errors import InputError, ParameterError
+
+SCHEMES = ("implicit", "explicit")
+
+
+def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:
+    """A (B, T) C-contiguous float64 copy-free view where possible, and whether it was (T,).
+
+    Raises :class:`InputError` for values that are not real numbers, shapes other than (T,) or
+    (B, T) with B ≥ 1, and non-finite samples (naming the first one).
+    """
+    try:
+        if np.iscomplexobj(values):
+            raise InputError(f"`{name}` must be real, got a complex array")
+        array = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        if isinstance(error, InputError):
+            raise
+        raise InputError(f"`{name}` must be castable to float64: {error}") from None
+    if array.ndim not in (1, 2):
+        raise InputError(f"`{name}` must have shape (T,) or (B, T), got shape {array.shape}")
+    array = np.ascontiguousarray(array)
+    one_dimensional = array.ndim == 1
+    if one_dimensional:
+        array = array.reshape(1, -1)
+    if array.shape[0] == 0:
+        raise InputError(f"`{name}` must have at least one channel, got shape {array.shape}")
+    finite = np.isfinite(array)
+    if not finite.all():
+        channel, sample = np.unravel_index(int(np.argmin(finite)), array.shape)
+        where = f"sample {sample}" if one_dimensional else f"channel {channel}, sample {sample}"
+        raise InputError(f"`{name}` must be finite, got {array[channel, sample]} at {where}")
+    return array, one_dimensional
+
+
+def as_channel_signal(values: ArrayLike, name: str, channels: int) -> tuple[FloatArray, bool]:
+    """:func:`as_signal` for an object of ``channels`` channels: (T,) only when it has one
+    channel, otherwise (``channels``, T)."""
+    array, one_dimensional = as_signal(values, name)
+    if array.shape[0] != channels or (one_dimensional and channels != 1):
+        expected = "(T,) or (1, T)" if channels == 1 else f"({channels}, T)"
+        raise InputError(f"`{name}` must have shape {expected}, got shape {np.shape(values)}")
+    return array, one_dimensional
+
+
+def as_channels(values: ArrayLike, name: str, channels: int) -> FloatArray:
+    """One sample per channel: a finite float64 array of shape (channels,), and nothing else."""
+    try:
+        shape = np.shape(values)
+    except ValueError:
+        shape = None  # ragged: as_signal says what is wrong with it
+    if shape is not None and shape != (channels,):
+        raise InputError(f"`{name}` must have shape ({channels},), got shape {shape}")
+    array, _ = as_signal(values, name)
+    return array[0]
+
+
+def check_dt(dt: Any) -> float:
+    """The step size as a float; must be a real number, finite and > 0."""
+    if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
+        raise InputError(f"`dt` must be a real number, got {dt!r}")
+    value = float(dt)
+    if not (np.isfinite(value) and value > 0.0):
+        raise InputError(f"`dt` must be finite and > 0, got {value}")
+    if value < np.finfo(np.float64).tiny:  # its reciprocal would overflow
+        raise InputError(f"`dt` must be finite and > 0, got {value} (a subnormal number: at least 2.2e-308 is needed)")
+    return value
+
+
+def check_channels(channels: Any) -> int:
+    """A channel count: an integer (not a bool) from 1 to ``sys.maxsize``."""
+    if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
+        raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
+    if not 1 <= channels <= sys.maxsize:
+        raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
+    return int(channels)
+
+
+def check_scheme(scheme: Any) -> str:
+    """'implicit' or 'explicit'."""
+    if scheme not in SCHEMES:
+        raise InputError(f"`scheme` must be 'implicit' or 'explicit', got {scheme!r}")
+    return str(scheme)
+
+
+def as_real_list(name: str, values: Any, length: int | None = None) -> list[float]:
+    """A flat sequence of real numbers (of ``length`` values, when given) as floats."""
+    if isinstance(values, (str, bytes)) or not (
+        isinstance(values, Sequence) or hasattr(values, "__array__")
+    ):
+        raise ParameterError(f"`{name}` must be a sequence of real numbers, got {values!r}")
+    array = np.asarray(values)
+    if array.ndim != 1 or array.dtype.kind not in "iuf":
+        raise ParameterError(
+            f"`{name}` must be a flat sequence of real numbers, got {values!r}"
+        )
+    if length is not None and array.shape[0] != length:
+        raise ParameterError(f"`{name}` must have {length} values, got {array.shape[0]}")
+    return [float(value) for value in array]
+
+
+def as_log(x: ArrayLike, v: ArrayLike, f: ArrayLike | None) -> list[FloatArray]:
+    """x, v (and f) as finite float64 arrays of one common shape (T,), T ≥ 1."""
+    named = [("x", x), ("v", v)] + ([("f", f)] if f is not None else [])
+    arrays = []
+    for name, values in named:
+        array, one_dimensional = as_signal(values, name)
+        if not one_dimensional:
+            raise InputError(f"`{name}` must have shape (T,), got shape {np.shape(values)}")
+        arrays.append(array[0])
+    length = arrays[0].shape[0]
+    for (name, _), array in zip(named[1:], arrays[1:]):
+        if array.shape[0] != length:
+            raise InputError(f"`{name}` must have the length of `x`, {length}, got {array.shape[0]}")
+    return arrays

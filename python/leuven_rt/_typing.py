@@ -1,0 +1,25 @@
+"""Type aliases shared across the package, so that every module spells an array, a parameter
+set or a log the same way."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from os import PathLike
+from typing import TYPE_CHECKING, Any, Union
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from .data.records import MotionData
+    from .params import Params
+
+#: A float64 array of any shape: signals (T,) or (B, T), regressor matrices, states.
+FloatArray = NDArray[np.float64]
+#: A parameter set: a :class:`leuven_rt.Params`, or a mapping with its keys.
+ParamsLike = Union["Params", Mapping[str, Any]]
+#: A log: a :class:`leuven_rt.MotionData`, a path to a ``.csv`` or EMPS ``.mat`` file, or a
+#: mapping of the columns ``t``, ``x``, ``f`` (and optionally ``v``).
+DataLike = Union["MotionData", str, "PathLike[str]", Mapping[str, ArrayLike]]
+
+__all__ = ["DataLike", "FloatArray", "ParamsLike"]

@@ -1,0 +1,69 @@
+"""Signals derived from a log: zero-phase derivative estimates, the low-pass-and-decimate of the
+EMPS benchmark's IDIM-LS, and the noise floor of the force.
+
+Every fit works from these: the identification stages and the discrepancy workflow's features.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import signal
+
+from .._typing import FloatArray
+from ..errors import DataError
+from .records import MotionData
+
+
+@dataclass(frozen=True, eq=False)
+class Derivatives:
+    """Zero-phase estimates from the position: filtered position, velocity and acceleration."""
+
+    x: FloatArray
+    v: FloatArray
+    a: FloatArray
+    cutoff: float
+
+
+def lowpass(values: FloatArray, dt: float, cutoff: float, order: int = 4) -> FloatArray:
+    """Butterworth low-pass of ``order`` at ``cutoff`` [Hz], run forward and backward (zero phase)."""
+    nyquist = 0.5 / dt
+    if not 0.0 < cutoff < nyquist:
+        raise DataError(f"`cutoff` must be in (0, {nyquist:g}) Hz (the Nyquist frequency), got {cutoff!r}")
+    sos = signal.butter(order, cutoff, fs=1.0 / dt, output="sos")
+    return np.asarray(signal.sosfiltfilt(sos, values), dtype=np.float64)
+
+
+def default_cutoff(dt: float) -> float:
+    """The derivative filter's default cutoff: a tenth of the Nyquist frequency."""
+    return 0.05 / dt
+
+
+def estimate_derivatives(data: MotionData, cutoff: float | None = None, order: int = 4) -> Derivatives:
+    """Velocity and acceleration by a zero-phase Butterworth low-pass and central differences.
+
+    The measured ``v`` is used (filtered the same way) where the data has it; otherwise the
+    velocity is the central difference of the filtered position.
+    """
+    dt = data.dt
+    cutoff = default_cutoff(dt) if cutoff is None else float(cutoff)
+    x = lowpass(data.x, dt, cutoff, order)
+    v = np.gradient(x, dt) if data.v is None else lowpass(data.v, dt, cutoff, order)
+    return Derivatives(x=x, v=v, a=np.gradient(v, dt), cutoff=cutoff)
+
+
+def decimate(values: FloatArray, factor: int) -> FloatArray:
+    """Low-pass (8th-order Chebyshev I at 0.8 of the new Nyquist frequency, zero phase) and keep
+    one sample in ``factor``: MATLAB's and scipy's ``decimate``."""
+    if factor == 1:
+        return values
+    return np.asarray(signal.decimate(values, factor, ftype="iir", zero_phase=True), dtype=np.float64)
+
+
+def noise_floor(force: FloatArray) -> float:
+    """Standard deviation of white noise on ``force``, from sample-to-sample differences
+    (robust: 1.4826·MAD of the differences / √2, so that steps at reversals do not count)."""
+    differences = np.diff(force)
+    spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
+    return spread / np.sqrt(2.0)

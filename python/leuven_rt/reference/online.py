@@ -1,0 +1,38 @@
+"""The regressors of :class:`leuven_rt.OnlineIdentifier` in plain numpy, written as the
+specification: the Rust estimator must build the same ones (the tests compare the two)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._checks import as_log, as_real_list
+from .._typing import FloatArray
+from ..errors import ParameterError
+from ..online import EXTRA_TERMS
+
+
+def regressors(Delta: ArrayLike, x: ArrayLike, v: ArrayLike) -> FloatArray:
+    """The regressor of every sample, shape (T, N + 3): ``[ψ_0, …, ψ_{N−1}, sgn(v), v, 1]``.
+
+    Plain numpy (a loop over samples, vectorised over elements), written from the definition:
+    element i keeps its deflection x − ζᵢ within ±Δᵢ and slips beyond; ψᵢ is that deflection
+    over Δᵢ; the first position relaxes every element. ``numpy.linalg.lstsq(regressors(...), f)``
+    is the batch estimate that :class:`OnlineIdentifier` approaches.
+    """
+    delta = np.asarray(as_real_list("Delta", Delta), dtype=np.float64)
+    if delta.size == 0 or not (np.isfinite(delta).all() and (delta > 0).all()):
+        raise ParameterError(f"`Delta` must be at least one finite value > 0, got {delta.tolist()}")
+    xs, vs = as_log(x, v, None)
+    out = np.empty((xs.shape[0], delta.size + len(EXTRA_TERMS)))
+    zeta = np.full(delta.size, xs[0])
+    for k, position in enumerate(xs):
+        stretched = position - zeta
+        deflection = np.clip(stretched, -delta, delta)
+        # Only slipping elements move (rewriting a sticking ζ as x − (x − ζ) would round).
+        zeta = np.where(deflection != stretched, position - deflection, zeta)
+        out[k, : delta.size] = deflection / delta
+    out[:, delta.size] = np.sign(vs)
+    out[:, delta.size + 1] = vs
+    out[:, delta.size + 2] = 1.0
+    return out
