@@ -209,34 +209,55 @@ def main() -> None:
     print()
     print("| measurement | measured | target | met |")
     print("|---|---:|---:|---|")
-    print(row(
-        f"(a) Rust `simulate`, 1 channel, T = {SINGLE_T:,}, N = 10 [samples/s]",
-        f"{single['rust_rate']:.3g}", "", None,
-    ))
-    print(row(
-        f"(a) numpy reference, timed on the first {config.reference_samples:,} samples and "
-        "extrapolated per sample [samples/s]",
-        f"{single['reference_rate']:.3g}", "", None,
-    ))
-    print(row("(a) Rust / reference speed ratio", f"{ratio:.0f}×", f"≥ {TARGET_RATIO:g}×",
-              ratio >= TARGET_RATIO))
-    print(row(
-        f"(b) `LeuvenModel.step(v, dt)` from Python, median of {step['calls']:,.0f} calls "
-        f"in batches of {config.step_batch}",
-        f"{step['median_ns']:.0f} ns", f"< {TARGET_STEP_MEDIAN_NS:g} ns",
-        step["median_ns"] < TARGET_STEP_MEDIAN_NS,
-    ))
+    print(
+        row(
+            f"(a) Rust `simulate`, 1 channel, T = {SINGLE_T:,}, N = 10 [samples/s]",
+            f"{single['rust_rate']:.3g}",
+            "",
+            None,
+        )
+    )
+    print(
+        row(
+            f"(a) numpy reference, timed on the first {config.reference_samples:,} samples and "
+            "extrapolated per sample [samples/s]",
+            f"{single['reference_rate']:.3g}",
+            "",
+            None,
+        )
+    )
+    print(
+        row(
+            "(a) Rust / reference speed ratio", f"{ratio:.0f}×", f"≥ {TARGET_RATIO:g}×", ratio >= TARGET_RATIO
+        )
+    )
+    print(
+        row(
+            f"(b) `LeuvenModel.step(v, dt)` from Python, median of {step['calls']:,.0f} calls "
+            f"in batches of {config.step_batch}",
+            f"{step['median_ns']:.0f} ns",
+            f"< {TARGET_STEP_MEDIAN_NS:g} ns",
+            step["median_ns"] < TARGET_STEP_MEDIAN_NS,
+        )
+    )
     print(row("(b) same, p99 of the batch averages", f"{step['p99_ns']:.0f} ns", "", None))
-    print(row(
-        f"(c) `simulate`, B = {BATCH_B} × T = {BATCH_T:,} × N = 10, best of {config.repeats} "
-        "[element-updates/s]",
-        f"{batch['updates']:.3g}", f"≥ {TARGET_BATCH_UPDATES:.0e}",
-        batch["updates"] >= TARGET_BATCH_UPDATES,
-    ))
-    print(row(
-        "(c) single-channel equivalent, from (a) [element-updates/s]",
-        f"{batch['single_updates']:.3g}", "", None,
-    ))
+    print(
+        row(
+            f"(c) `simulate`, B = {BATCH_B} × T = {BATCH_T:,} × N = 10, best of {config.repeats} "
+            "[element-updates/s]",
+            f"{batch['updates']:.3g}",
+            f"≥ {TARGET_BATCH_UPDATES:.0e}",
+            batch["updates"] >= TARGET_BATCH_UPDATES,
+        )
+    )
+    print(
+        row(
+            "(c) single-channel equivalent, from (a) [element-updates/s]",
+            f"{batch['single_updates']:.3g}",
+            "",
+            None,
+        )
+    )
     print(row(f"(c) parallel speed-up on {os.cpu_count()} cores", f"{speedup:.2f}×", "", None))
     print()
     print(

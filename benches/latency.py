@@ -132,7 +132,9 @@ def main() -> None:
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
     for row in rows:
         evaluations = (
-            f"{row['most_evaluations']} ({row['evaluation_bound']})" if "most_evaluations" in row else "same solver"
+            f"{row['most_evaluations']} ({row['evaluation_bound']})"
+            if "most_evaluations" in row
+            else "same solver"
         )
         print(
             f"| {row['language']} | {row['mode']} | {row['steps']:,} | {row['median_ns']:.0f} ns | "

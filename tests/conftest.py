@@ -1,6 +1,6 @@
 """Shared hypothesis strategies and helpers for the Rust-vs-reference and API tests.
 
-Parameter sets are drawn as plain dicts with the keys of DESIGN.md §2 (the parameter-file form),
+Parameter sets are drawn as plain dicts with the keys of docs/parameters.md#keys (the parameter-file form),
 so that every test can pass them to either implementation or to ``Params``.
 """
 

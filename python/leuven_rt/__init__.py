@@ -1,6 +1,6 @@
 """leuven-rt: the modified Leuven friction model, a real-time Rust core with a Python front.
 
-- :class:`Params`: a validated parameter set (DESIGN.md §2 keys).
+- :class:`Params`: a validated parameter set (docs/parameters.md#keys).
 - :func:`simulate`, :func:`simulate_position`: run velocity or position signals, (T,) or (B, T).
 - :class:`LeuvenModel`: stateful channels stepped sample by sample, with checkpoints.
 - :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
@@ -60,8 +60,8 @@ __all__ = [
     "MassSystem",
     "MassTrajectory",
     "ModelState",
-    "OnlineIdentifier",
     "MotionData",
+    "OnlineIdentifier",
     "ParameterError",
     "Params",
     "Trace",

@@ -80,7 +80,9 @@ def check_dt(dt: Any) -> float:
     if not (np.isfinite(value) and value > 0.0):
         raise InputError(f"`dt` must be finite and > 0, got {value}")
     if value < np.finfo(np.float64).tiny:  # its reciprocal would overflow
-        raise InputError(f"`dt` must be finite and > 0, got {value} (a subnormal number: at least 2.2e-308 is needed)")
+        raise InputError(
+            f"`dt` must be finite and > 0, got {value} (a subnormal number: at least 2.2e-308 is needed)"
+        )
     return value
 
 
@@ -102,15 +104,11 @@ def check_scheme(scheme: Any) -> str:
 
 def as_real_list(name: str, values: Any, length: int | None = None) -> list[float]:
     """A flat sequence of real numbers (of ``length`` values, when given) as floats."""
-    if isinstance(values, (str, bytes)) or not (
-        isinstance(values, Sequence) or hasattr(values, "__array__")
-    ):
+    if isinstance(values, (str, bytes)) or not (isinstance(values, Sequence) or hasattr(values, "__array__")):
         raise ParameterError(f"`{name}` must be a sequence of real numbers, got {values!r}")
     array = np.asarray(values)
     if array.ndim != 1 or array.dtype.kind not in "iuf":
-        raise ParameterError(
-            f"`{name}` must be a flat sequence of real numbers, got {values!r}"
-        )
+        raise ParameterError(f"`{name}` must be a flat sequence of real numbers, got {values!r}")
     if length is not None and array.shape[0] != length:
         raise ParameterError(f"`{name}` must have {length} values, got {array.shape[0]}")
     return [float(value) for value in array]

@@ -14,7 +14,9 @@ from typing import Any
 from matplotlib.figure import Figure
 
 
-def figure(rows: int = 1, columns: int = 1, *, size: tuple[float, float], **options: Any) -> tuple[Figure, Any]:
+def figure(
+    rows: int = 1, columns: int = 1, *, size: tuple[float, float], **options: Any
+) -> tuple[Figure, Any]:
     """A figure of ``size`` inches with a ``rows`` × ``columns`` grid of axes (``options`` go to
     :meth:`Figure.subplots`, e.g. ``sharex``); one axes, or an array of them."""
     layout = options.pop("layout", None)

@@ -89,7 +89,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
-        "demo", help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; write figures"
+        "demo",
+        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; write figures",
     )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.set_defaults(run=_demo)
@@ -107,21 +108,36 @@ def main(argv: Sequence[str] | None = None) -> int:
     identify = commands.add_parser(
         "identify", help="fit the model to a log of position and force (.csv t,x,f[,v] or EMPS .mat)"
     )
-    identify.add_argument("data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file")
+    identify.add_argument(
+        "data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file"
+    )
     identify.add_argument("-o", "--output", required=True, help="where to write the parameter file (JSON)")
     identify.add_argument("--report", help="also write the identification report here (JSON)")
-    identify.add_argument("--elements", type=int, help="number of Maxwell-slip elements (default: chosen from the data)")
+    identify.add_argument(
+        "--elements", type=int, help="number of Maxwell-slip elements (default: chosen from the data)"
+    )
     identify.add_argument("--asymmetric", action="store_true", help="fit Fc_neg and Fs_neg as well")
-    identify.add_argument("--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)")
+    identify.add_argument(
+        "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
+    )
     identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
     identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
     identify.set_defaults(run=_identify)
     diagnose = commands.add_parser(
-        "diagnose", help="name the catalogue effects a friction model misses in a log, and how much each helps"
+        "diagnose",
+        help="name the catalogue effects a friction model misses in a log, and how much each helps",
     )
-    diagnose.add_argument("data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file")
-    diagnose.add_argument("--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)")
-    diagnose.add_argument("--json", action="store_true", help="print the JSON report of DESIGN.md §4 (no progress bar)")
+    diagnose.add_argument(
+        "data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file"
+    )
+    diagnose.add_argument(
+        "--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)"
+    )
+    diagnose.add_argument(
+        "--json",
+        action="store_true",
+        help="print the JSON report of docs/data-and-reports.md#diagnosis-report (no progress bar)",
+    )
     diagnose.add_argument("--plot", help="write the residual figure to this PNG")
     diagnose.set_defaults(run=_diagnose)
     control = commands.add_parser(

@@ -70,7 +70,13 @@ class MassSystem(_core.MassEngine):
         scheme: str = "implicit",
     ) -> MassSystem:
         return super().__new__(
-            cls, as_params(params), mass, stiffness, drive_speed, check_channels(channels), check_scheme(scheme)
+            cls,
+            as_params(params),
+            mass,
+            stiffness,
+            drive_speed,
+            check_channels(channels),
+            check_scheme(scheme),
         )
 
     def __repr__(self) -> str:
@@ -88,7 +94,9 @@ class MassSystem(_core.MassEngine):
             try:
                 array = np.broadcast_to(np.asarray(value, dtype=np.float64), (b,))
             except (TypeError, ValueError):
-                raise InputError(f"`{name}` must be a real number or have shape ({b},), got {value!r}") from None
+                raise InputError(
+                    f"`{name}` must be a real number or have shape ({b},), got {value!r}"
+                ) from None
             arrays.append(np.ascontiguousarray(as_channels(array, name, b)))
         self._place(*arrays)
 

@@ -47,9 +47,7 @@ class LeuvenModel(_core.Engine):
     ``set_state`` take and restore checkpoints; ``reset`` relaxes every channel.
     """
 
-    def __new__(
-        cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit"
-    ) -> LeuvenModel:
+    def __new__(cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit") -> LeuvenModel:
         return super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
 
     def __repr__(self) -> str:
@@ -105,9 +103,13 @@ class LeuvenModel(_core.Engine):
             try:
                 array = np.asarray(value, dtype=np.bool_ if boolean else np.float64)
             except (TypeError, ValueError):
-                raise InputError(f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}") from None
+                raise InputError(
+                    f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}"
+                ) from None
             if boolean and np.asarray(value).dtype != np.bool_:
-                raise InputError(f"`state.{name}` must be a boolean array, got dtype {np.asarray(value).dtype}")
+                raise InputError(
+                    f"`state.{name}` must be a boolean array, got dtype {np.asarray(value).dtype}"
+                )
             if array.shape != shape:
                 raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
             if not boolean and not np.isfinite(array).all():

@@ -1,6 +1,6 @@
 """Parameters of the modified Leuven model: one validated, immutable set, with its JSON form.
 
-The keys are those of DESIGN.md §2. Validation is gms-core's, called once at construction, so
+The keys are those of docs/parameters.md#keys. Validation is gms-core's, called once at construction, so
 that Python and Rust accept exactly the same parameter sets.
 """
 
@@ -29,8 +29,10 @@ def _real(key: str, value: Any) -> float:
 
 
 def _reals(key: str, values: Any) -> tuple[float, ...]:
-    if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence,)) and not hasattr(
-        values, "__array__"
+    if (
+        isinstance(values, (str, bytes))
+        or (not isinstance(values, (Sequence,))
+        and not hasattr(values, "__array__"))
     ):
         raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r}")
     items = list(values.tolist() if hasattr(values, "tolist") else values)
@@ -92,7 +94,7 @@ class Params:
         return self.Fs if self.Fs_neg is None else self.Fs_neg
 
     def to_dict(self) -> dict[str, Any]:
-        """The parameter-file form: keys of DESIGN.md §2, unset optional keys left out."""
+        """The parameter-file form: keys of docs/parameters.md#keys, unset optional keys left out."""
         out: dict[str, Any] = {}
         for field in fields(self):
             value = getattr(self, field.name)
@@ -102,7 +104,7 @@ class Params:
 
     @classmethod
     def from_dict(cls, mapping: Mapping[str, Any]) -> Params:
-        """Builds from a mapping with the keys of DESIGN.md §2; unknown or missing keys raise."""
+        """Builds from a mapping with the keys of docs/parameters.md#keys; unknown or missing keys raise."""
         if not isinstance(mapping, Mapping):
             raise ParameterError(f"parameters must be a mapping, got {type(mapping).__name__}")
         known = {field.name for field in fields(cls)}

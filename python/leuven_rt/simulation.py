@@ -10,9 +10,7 @@ from ._typing import FloatArray, ParamsLike
 from .params import as_params
 
 
-def _run(
-    params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: str
-) -> FloatArray:
+def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: str) -> FloatArray:
     params = as_params(params)
     array, one_dimensional = as_signal(signal, name)
     dt = check_dt(dt)
@@ -21,9 +19,7 @@ def _run(
     return out[0] if one_dimensional else out
 
 
-def simulate(
-    params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit"
-) -> FloatArray:
+def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
@@ -33,8 +29,6 @@ def simulate(
     return _run(params, v, "v", dt, scheme)
 
 
-def simulate_position(
-    params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit"
-) -> FloatArray:
+def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
     return _run(params, x, "x", dt, scheme)

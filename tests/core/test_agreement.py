@@ -12,16 +12,18 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import LUGRE, MAXWELL, log_uniform, max_relative_error, params_dicts, velocity_signals
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import leuven_rt
+from conftest import LUGRE, MAXWELL, log_uniform, max_relative_error, params_dicts, velocity_signals
 from leuven_rt import DivergenceError, reference
 
 TOLERANCE = 1e-12
 SETTINGS = settings(
-    max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.large_base_example]
+    max_examples=40,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.large_base_example],
 )
 
 
@@ -99,7 +101,9 @@ def test_explicit_rust_matches_reference(p: dict[str, Any], data: st.DataObject,
 @SETTINGS
 @given(p=params_dicts(linear=True), data=st.data())
 @pytest.mark.parametrize("scheme", ["implicit", "explicit"])
-def test_linear_hysteresis_rust_matches_reference(p: dict[str, Any], data: st.DataObject, scheme: str) -> None:
+def test_linear_hysteresis_rust_matches_reference(
+    p: dict[str, Any], data: st.DataObject, scheme: str
+) -> None:
     """The linear (σ0, LuGre-like) hysteresis on its own, both schemes, velocity input:
     max|a − b| / max|b| ≤ 1e-12. (Explicit: velocities scaled to stay stable.)"""
     dt = data.draw(log_uniform(1e-5, 1e-3), label="dt")

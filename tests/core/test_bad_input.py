@@ -12,11 +12,11 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import LUGRE, MAXWELL, assert_same_state
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import leuven_rt
+from conftest import LUGRE, MAXWELL, assert_same_state
 from leuven_rt import (
     MAX_ELEMENTS,
     DivergenceError,
@@ -160,8 +160,11 @@ BAD_DT = [
     pytest.param(float("nan"), r"(?i)`dt` must be finite and > 0, got nan$", id="nan"),
     pytest.param(float("inf"), r"`dt` must be finite and > 0, got inf$", id="inf"),
     pytest.param(-float("inf"), r"`dt` must be finite and > 0, got -inf$", id="-inf"),
-    pytest.param(1e-310, r"`dt` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)$",
-                 id="subnormal"),
+    pytest.param(
+        1e-310,
+        r"`dt` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)$",
+        id="subnormal",
+    ),
     pytest.param("1e-3", r"`dt` must be a real number, got '1e-3'", id="string"),
     pytest.param(True, r"`dt` must be a real number, got True", id="bool"),
     pytest.param(None, r"`dt` must be a real number, got None", id="None"),
@@ -219,7 +222,9 @@ def test_position_differences_that_overflow_are_reported() -> None:
     naming the velocity, the value inf and the sample, in Rust and in the reference alike."""
     x = np.array([0.0, 1e308, -1e308, 0.0])
     for simulate in (leuven_rt.simulate_position, reference.simulate_position):
-        rejects(None, lambda: simulate(MAXWELL, x, DT), InputError, r"`v` must be finite, got inf at sample 1$")
+        rejects(
+            None, lambda: simulate(MAXWELL, x, DT), InputError, r"`v` must be finite, got inf at sample 1$"
+        )
     with pytest.raises(InputError, match=r"`v` must be finite, got inf at sample 1$"):
         LeuvenModel(MAXWELL).run_position(x, DT)
 
@@ -266,7 +271,9 @@ def test_step_channels_wants_one_sample_per_channel(signal: Any, message: str) -
     raises InputError with what was expected and what came, state kept."""
     model = busy_model(channels=2)
     rejects(model, lambda: model.step_channels(signal, DT), InputError, message)
-    rejects(model, lambda: model.step_channels_position(signal, DT), InputError, message.replace("`v`", "`x`"))
+    rejects(
+        model, lambda: model.step_channels_position(signal, DT), InputError, message.replace("`v`", "`x`")
+    )
 
 
 @pytest.mark.parametrize("method", ["step", "step_position"])
@@ -356,7 +363,9 @@ BAD_SCHEMES = [
     "call",
     [
         pytest.param(lambda scheme: leuven_rt.simulate(MAXWELL, V, DT, scheme), id="simulate"),
-        pytest.param(lambda scheme: leuven_rt.simulate_position(MAXWELL, V, DT, scheme), id="simulate_position"),
+        pytest.param(
+            lambda scheme: leuven_rt.simulate_position(MAXWELL, V, DT, scheme), id="simulate_position"
+        ),
         pytest.param(lambda scheme: reference.simulate(MAXWELL, V, DT, scheme), id="reference"),
         pytest.param(lambda scheme: LeuvenModel(MAXWELL, scheme=scheme), id="LeuvenModel"),
     ],
@@ -364,7 +373,9 @@ BAD_SCHEMES = [
 def test_unknown_scheme(call: Callable[[Any], object], scheme: Any, message: str) -> None:
     """An unknown scheme (or one that is not a str) raises InputError naming `scheme`, the two
     accepted names and what came."""
-    rejects(None, lambda: call(scheme), InputError, rf"`scheme` must be 'implicit' or 'explicit', ({message})")
+    rejects(
+        None, lambda: call(scheme), InputError, rf"`scheme` must be 'implicit' or 'explicit', ({message})"
+    )
 
 
 @pytest.mark.parametrize("channels", [2**33, 2**62])
@@ -395,7 +406,10 @@ BAD_PARAMS = [
     ({"Fc": -1.0}, r"`Fc` must be finite and > 0, got -1"),
     ({"Fc": float("nan")}, r"(?i)`Fc` must be finite and > 0, got nan"),
     ({"Fc": float("inf"), "Fs": float("inf")}, r"`Fc` must be finite and > 0, got inf"),
-    ({"Fc": 1e-310}, r"`Fc` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)"),
+    (
+        {"Fc": 1e-310},
+        r"`Fc` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)",
+    ),
     ({"Fs": 0.5}, r"`Fs` must be >= `Fc` = 1(\.0)?, got 0\.5"),
     ({"Vs": 0.0}, r"`Vs` must be finite and > 0, got 0"),
     ({"Vs": -1e-3}, r"`Vs` must be finite and > 0, got -0\.001"),
@@ -421,8 +435,10 @@ BAD_PARAMS = [
     ({"W": [0.25] * 4}, r"`sum\(W\)` must be > max\(`Fs`, `Fs_neg`\) = 1\.5, got sum\(W\) = 1"),
     ({"W": [0.375] * 4}, r"`sum\(W\)` must be > max\(`Fs`, `Fs_neg`\) = 1\.5, got sum\(W\) = 1\.5"),
     ({"Fs_neg": 2.5}, r"`sum\(W\)` must be > max\(`Fs`, `Fs_neg`\) = 2\.5, got sum\(W\) = 2"),
-    ({"W": [1.0] * (MAX_ELEMENTS + 1), "Delta": [1e-6] * (MAX_ELEMENTS + 1)},
-     rf"`W` and `Delta` may have at most {MAX_ELEMENTS} elements, got {MAX_ELEMENTS + 1}"),
+    (
+        {"W": [1.0] * (MAX_ELEMENTS + 1), "Delta": [1e-6] * (MAX_ELEMENTS + 1)},
+        rf"`W` and `Delta` may have at most {MAX_ELEMENTS} elements, got {MAX_ELEMENTS + 1}",
+    ),
     ({"W": [], "Delta": []}, r"`W` and `Delta` need at least one element, got empty sequences"),
     ({"W": [1.0, 1.0, 1.0]}, r"`W` and `Delta` must have the same length, got 3 and 4"),
     ({"Delta": [1e-6] * 5}, r"`W` and `Delta` must have the same length, got 4 and 5"),
@@ -470,7 +486,7 @@ BAD_PARAM_CASES = [pytest.param(_changed(MAXWELL_SYMMETRIC, c), m, id=f"maxwell-
 
 @pytest.mark.parametrize(("params", "message"), BAD_PARAM_CASES)
 def test_every_parameter_rule_is_enforced(params: dict[str, Any], message: str) -> None:
-    """Each rule of DESIGN.md §2 broken on its own raises ParameterError naming the key, the rule
+    """Each rule of docs/parameters.md#rules broken on its own raises ParameterError naming the key, the rule
     and what came, whether the set is built as Params, from a dict, or given to simulate or to
     LeuvenModel."""
     rejects(None, lambda: Params(**params), ParameterError, message)
@@ -531,7 +547,9 @@ def test_from_json_rejects_invalid_json(text: Any, message: str) -> None:
 def test_params_argument_of_the_wrong_type() -> None:
     """simulate and LeuvenModel reject a params argument that is neither Params nor a mapping."""
     for call in (lambda: leuven_rt.simulate(42, V, DT), lambda: LeuvenModel([1, 2])):
-        rejects(None, call, ParameterError, r"`params` must be a leuven_rt.Params or a mapping, got (int|list)")
+        rejects(
+            None, call, ParameterError, r"`params` must be a leuven_rt.Params or a mapping, got (int|list)"
+        )
 
 
 # --- divergence -------------------------------------------------------------------------------

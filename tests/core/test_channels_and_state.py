@@ -7,6 +7,10 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import leuven_rt
 from conftest import (
     LUGRE,
     MAXWELL,
@@ -16,14 +20,12 @@ from conftest import (
     state_arrays,
     velocity_signals,
 )
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-
-import leuven_rt
 from leuven_rt import LeuvenModel, ModelState, Params
 
 SETTINGS = settings(
-    max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.large_base_example]
+    max_examples=30,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.large_base_example],
 )
 DT = 1e-4
 SAMPLES = 1500
@@ -282,7 +284,8 @@ def test_model_from_dict_equals_model_from_params(model_params: dict[str, Any], 
     both = np.stack([v, -v])
     np.testing.assert_array_equal(from_dict.run(both, 1e-5), from_params.run(both, 1e-5))
     np.testing.assert_array_equal(
-        leuven_rt.simulate(model_params, v, 1e-5, scheme), leuven_rt.simulate(Params(**model_params), v, 1e-5, scheme)
+        leuven_rt.simulate(model_params, v, 1e-5, scheme),
+        leuven_rt.simulate(Params(**model_params), v, 1e-5, scheme),
     )
     elements = len(model_params.get("W", []))
     assert (from_dict.channels, from_dict.elements, from_dict.scheme) == (2, elements, scheme)

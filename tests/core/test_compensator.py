@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import LUGRE, MAXWELL, params_dicts
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from conftest import LUGRE, MAXWELL, params_dicts
 from leuven_rt import Compensator, InputError, LeuvenModel, ParameterError
 
 DT = 1e-3
@@ -168,4 +168,9 @@ def test_new_parameters_must_have_the_same_kind_and_size() -> None:
     lugre = busy("observer", LUGRE)
     rejects(lugre, lambda: lugre.set_params(MAXWELL), ParameterError,
             r"must have linear hysteresis `sigma0` like the compensator's, got 4 Maxwell-slip")  # fmt: skip
-    rejects(compensator, lambda: compensator.set_params(42), ParameterError, r"must be a leuven_rt.Params or a mapping")
+    rejects(
+        compensator,
+        lambda: compensator.set_params(42),
+        ParameterError,
+        r"must be a leuven_rt.Params or a mapping",
+    )

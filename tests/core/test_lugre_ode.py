@@ -58,7 +58,7 @@ def velocity(t: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def g(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    return FC + (FS - FC) * np.exp(-np.abs(v / VS) ** DELTA)
+    return FC + (FS - FC) * np.exp(-(np.abs(v / VS) ** DELTA))
 
 
 def dz_dt(t: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -103,9 +103,7 @@ def test_the_velocity_reverses_and_slides() -> None:
 
 
 @pytest.mark.parametrize("name", IMPLEMENTATIONS)
-def test_implicit_step_converges_to_the_ode_at_first_order(
-    name: str, ode_force: NDArray[np.float64]
-) -> None:
+def test_implicit_step_converges_to_the_ode_at_first_order(name: str, ode_force: NDArray[np.float64]) -> None:
     errors = [rms_error(IMPLEMENTATIONS[name], ode_force, dt, "implicit") for dt in STEPS]
     assert errors[1] < RMS_BOUND_AT_1E5
     for coarse, fine in zip(errors, errors[1:]):
@@ -113,9 +111,7 @@ def test_implicit_step_converges_to_the_ode_at_first_order(
 
 
 @pytest.mark.parametrize("name", IMPLEMENTATIONS)
-def test_explicit_step_is_as_close_when_the_step_is_fine(
-    name: str, ode_force: NDArray[np.float64]
-) -> None:
+def test_explicit_step_is_as_close_when_the_step_is_fine(name: str, ode_force: NDArray[np.float64]) -> None:
     """At dt = 1e-5, dt·|v|·σ0/g ≤ 0.007: forward Euler is far inside its stability limit of 2."""
     assert rms_error(IMPLEMENTATIONS[name], ode_force, 1e-5, "explicit") < RMS_BOUND_AT_1E5
 

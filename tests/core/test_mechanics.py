@@ -9,11 +9,11 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import MAXWELL, log_uniform, max_relative_error, params_dicts
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import leuven_rt as lr
+from conftest import MAXWELL, log_uniform, max_relative_error, params_dicts
 from leuven_rt.reference import mechanics as reference
 
 #: Rust and the reference solve the same equations to a few ulps each; chained over a run the
@@ -174,7 +174,9 @@ def test_bad_inputs_are_input_errors_and_leave_the_state_untouched() -> None:
         system.set_state(lr.MassState(*(np.zeros(1),) * 4, np.zeros((1, 3))))
     with pytest.raises(lr.InputError, match=r"`position` must be finite, got nan at sample 0"):
         system.place(math.nan)
-    with pytest.raises(lr.InputError, match=r"`velocity` must be a real number or have shape \(1,\), got \[1.0, 2.0\]"):
+    with pytest.raises(
+        lr.InputError, match=r"`velocity` must be a real number or have shape \(1,\), got \[1.0, 2.0\]"
+    ):
         system.place(0.0, [1.0, 2.0])
     after = system.state
     for name in ("position", "velocity", "anchor", "z", "zeta"):

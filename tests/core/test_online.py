@@ -43,7 +43,11 @@ def leuven_log(samples: int = 8000, seed: int = 1) -> tuple[np.ndarray, np.ndarr
     """x, v, f: a 1-second-periodic motion (2, 5 and 11 Hz: reversals of many amplitudes) through
     the project's simulator, with 0.01 N of force noise."""
     t = np.arange(samples) * DT
-    x = 1e-4 * np.sin(2 * np.pi * 2 * t) + 2e-5 * np.sin(2 * np.pi * 5 * t) + 4e-6 * np.sin(2 * np.pi * 11 * t)
+    x = (
+        1e-4 * np.sin(2 * np.pi * 2 * t)
+        + 2e-5 * np.sin(2 * np.pi * 5 * t)
+        + 4e-6 * np.sin(2 * np.pi * 11 * t)
+    )
     noise = 0.01 * np.random.default_rng(seed).standard_normal(samples)
     return x, backward_velocity(x), lr.simulate_position(LEUVEN, x, DT) + noise
 

@@ -9,11 +9,11 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import LUGRE, MAXWELL, params_dicts
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import leuven_rt
+from conftest import LUGRE, MAXWELL, params_dicts
 from leuven_rt import LeuvenModel, Params
 
 KEYS = {"Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2", "W", "Delta", "Fc_neg", "Fs_neg", "sigma0"}
@@ -34,18 +34,22 @@ def test_json_and_dict_round_trips(p: dict[str, Any]) -> None:
     again = Params.from_json(params.to_json())
     for key, value in params.to_dict().items():
         got = again.to_dict()[key]
-        assert np.array_equal(np.asarray(got).view(np.int64), np.asarray(value, dtype=np.float64).view(np.int64)), key
+        assert np.array_equal(
+            np.asarray(got).view(np.int64), np.asarray(value, dtype=np.float64).view(np.int64)
+        ), key
 
 
 def test_to_dict_leaves_unset_optional_keys_out() -> None:
-    """The parameter-file form has exactly the keys of DESIGN.md §2 that are set: no Fc_neg/Fs_neg
+    """The parameter-file form has exactly the keys of docs/parameters.md#keys that are set: no Fc_neg/Fs_neg
     for a symmetric model, no W/Delta for linear hysteresis, no sigma0 for Maxwell slip."""
     symmetric = {k: v for k, v in MAXWELL.items() if k not in ("Fc_neg", "Fs_neg")}
     assert set(Params(**symmetric).to_dict()) == KEYS - {"Fc_neg", "Fs_neg", "sigma0"}
     assert set(Params(**MAXWELL).to_dict()) == KEYS - {"sigma0"}
     assert set(Params(**LUGRE).to_dict()) == KEYS - {"Fc_neg", "Fs_neg", "W", "Delta"}
     minimal = Params(Fc=1.0, Fs=2.0, Vs=1e-3, delta=1.0, n=1.0, sigma0=1e4)
-    assert minimal.to_dict() == dict(Fc=1.0, Fs=2.0, Vs=1e-3, delta=1.0, n=1.0, sigma1=0.0, sigma2=0.0, sigma0=1e4)
+    assert minimal.to_dict() == dict(
+        Fc=1.0, Fs=2.0, Vs=1e-3, delta=1.0, n=1.0, sigma1=0.0, sigma2=0.0, sigma0=1e4
+    )
 
 
 @pytest.mark.parametrize("model", [MAXWELL, LUGRE], ids=["maxwell", "lugre"])
@@ -65,14 +69,16 @@ def test_save_and_load(tmp_path: Path, model: dict[str, Any]) -> None:
 
 
 def test_a_hand_written_file_loads(tmp_path: Path) -> None:
-    """A parameter file written by hand with the §2 keys (ints where floats are meant, no
+    """A parameter file written by hand with the keys of docs/parameters.md#keys (ints where floats are meant, no
     sigma1/sigma2) loads, with floats and defaults filled in."""
     path = tmp_path / "hand.json"
-    path.write_text('{"Fc": 1, "Fs": 2, "Vs": 0.001, "delta": 2, "n": 1,\n "W": [1, 2], "Delta": [1e-6, 2e-6]}')
+    path.write_text(
+        '{"Fc": 1, "Fs": 2, "Vs": 0.001, "delta": 2, "n": 1,\n "W": [1, 2], "Delta": [1e-6, 2e-6]}'
+    )
     params = Params.load(path)
     assert params == Params(Fc=1.0, Fs=2.0, Vs=1e-3, delta=2.0, n=1.0, W=(1.0, 2.0), Delta=(1e-6, 2e-6))
     assert (params.sigma1, params.sigma2, params.sigma0, params.Fc_neg) == (0.0, 0.0, None, None)
-    assert type(params.Fc) is float and type(params.W[1]) is float  # noqa: E721
+    assert type(params.Fc) is float and type(params.W[1]) is float
 
 
 @pytest.mark.parametrize("key", ["Fc", "W", "sigma1", "Fc_neg"])
@@ -114,8 +120,8 @@ def test_numpy_and_int_values_are_normalised() -> None:
                       W=(1.0, 1.0), Delta=(2e-6, 4e-6), Fc_neg=1.0, Fs_neg=1.0)  # fmt: skip
     assert params == expected
     for key in ("Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2", "Fc_neg", "Fs_neg"):
-        assert type(getattr(params, key)) is float, key  # noqa: E721
-    assert type(params.W) is tuple and all(type(w) is float for w in params.W + params.Delta)  # noqa: E721
+        assert type(getattr(params, key)) is float, key
+    assert type(params.W) is tuple and all(type(w) is float for w in params.W + params.Delta)
     assert Params.from_json(params.to_json()) == expected
 
 
@@ -130,7 +136,7 @@ def test_w_accepts_any_flat_sequence_of_reals(values: Any) -> None:
     Python floats with the same values."""
     params = Params(**dict(MAXWELL, W=values))
     assert params.W == tuple(float(x) for x in values)
-    assert all(type(w) is float for w in params.W)  # noqa: E721
+    assert all(type(w) is float for w in params.W)
 
 
 def test_derived_properties() -> None:
@@ -155,7 +161,7 @@ def test_model_keeps_the_params_it_was_built_with() -> None:
 @settings(max_examples=30, deadline=None)
 @given(p=params_dicts(), scale=st.floats(0.5, 2.0))
 def test_validation_accepts_what_the_rules_allow(p: dict[str, Any], scale: float) -> None:
-    """Every parameter set drawn within the rules of DESIGN.md §2 is accepted by Params and by
+    """Every parameter set drawn within the rules of docs/parameters.md#rules is accepted by Params and by
     the Rust core (a LeuvenModel is built with the right number of elements)."""
     p = dict(p, sigma2=p["sigma2"] * scale)
     model = LeuvenModel(p)

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import MAXWELL, params_dicts
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from conftest import MAXWELL, params_dicts
 from leuven_rt import InputError, LeuvenModel, Trace
 from leuven_rt.data import element_deflections
 from leuven_rt.reference import MaxwellSlip
@@ -22,7 +22,11 @@ def path(samples: int = 2000, seed: int = 0) -> np.ndarray:
     """Positions with reversals of every size, from below the elements' deflections to sliding."""
     rng = np.random.default_rng(seed)
     t = np.arange(samples) * DT
-    return 2e-5 * np.sin(2 * np.pi * 3 * t) + 3e-6 * np.sin(2 * np.pi * 41 * t) + 1e-7 * rng.standard_normal(samples)
+    return (
+        2e-5 * np.sin(2 * np.pi * 3 * t)
+        + 3e-6 * np.sin(2 * np.pi * 41 * t)
+        + 1e-7 * rng.standard_normal(samples)
+    )
 
 
 def numpy_slip(x: np.ndarray, Delta: np.ndarray) -> np.ndarray:
@@ -87,7 +91,9 @@ def test_element_deflections_follow_the_slip_rule(elements: int) -> None:
 
 def test_element_deflections_refuse_bad_input() -> None:
     x = path()
-    with pytest.raises(InputError, match=r"`Delta\[1\]` must be finite and > 0 \(and 1/Delta finite\), got 0.0"):
+    with pytest.raises(
+        InputError, match=r"`Delta\[1\]` must be finite and > 0 \(and 1/Delta finite\), got 0.0"
+    ):
         element_deflections(x, np.array([1e-6, 0.0]))
     with pytest.raises(InputError, match=r"`Delta\[35\]` must be finite and > 0 .*, got -1.0"):
         element_deflections(x, np.r_[np.full(35, 1e-6), -1.0])

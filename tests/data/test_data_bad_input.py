@@ -10,9 +10,9 @@ from typing import Any
 import numpy as np
 import pytest
 import scipy.io
+
 from conftest import SMALL_LOG_SAMPLES as SAMPLES
 from conftest import small_log as columns
-
 from leuven_rt import identify
 from leuven_rt.data import MotionData, as_motion_data, fit_linear
 from leuven_rt.errors import DataError, InputError, ResamplingWarning
@@ -27,16 +27,34 @@ def test_a_valid_log_is_accepted() -> None:
 @pytest.mark.parametrize(
     ("changes", "match"),
     [
-        ({"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)}, r"too few samples: need at least 200, got 50"),
-        ({"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]}, r"column `f` must be finite, got nan at sample 10"),
-        ({"x": np.r_[np.zeros(5), np.inf, np.zeros(SAMPLES - 6)]}, r"column `x` must be finite, got inf at sample 5"),
-        ({"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3}, r"`t` must strictly increase, got t\[99\]"),
+        (
+            {"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)},
+            r"too few samples: need at least 200, got 50",
+        ),
+        (
+            {"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]},
+            r"column `f` must be finite, got nan at sample 10",
+        ),
+        (
+            {"x": np.r_[np.zeros(5), np.inf, np.zeros(SAMPLES - 6)]},
+            r"column `x` must be finite, got inf at sample 5",
+        ),
+        (
+            {"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3},
+            r"`t` must strictly increase, got t\[99\]",
+        ),
         ({"t": np.r_[0.0, np.zeros(SAMPLES - 1)]}, r"`t` must strictly increase"),
         ({"f": None}, r"missing columns \['f'\]: expected `t` \[s\], `x` \[m\], `f` \[N\]"),
         ({"f": np.ones(SAMPLES - 1)}, r"columns must have the same length"),
-        ({"f": 1e12 * np.ones(SAMPLES)}, r"column `f` reaches 1e\+12 N, beyond 1e\+07 N: expected SI units \(N\)"),
+        (
+            {"f": 1e12 * np.ones(SAMPLES)},
+            r"column `f` reaches 1e\+12 N, beyond 1e\+07 N: expected SI units \(N\)",
+        ),
         ({"x": 1e4 * np.linspace(0, 1, SAMPLES)}, r"column `x` reaches 10000 m"),
-        ({"t": np.arange(SAMPLES) * 1e-9}, r"sampling step of `t` must be between .* got 1e-09: is `t` in seconds\?"),
+        (
+            {"t": np.arange(SAMPLES) * 1e-9},
+            r"sampling step of `t` must be between .* got 1e-09: is `t` in seconds\?",
+        ),
         ({"x": np.linspace(0.0, 900.0, SAMPLES)}, r"`x` moves at up to .* m/s .*expected `x` in m"),
         ({"x": np.zeros(SAMPLES)}, r"`x` never changes"),
         ({"f": np.ones((SAMPLES, 2))}, r"column `f` must be one-dimensional, got shape \(400, 2\)"),
@@ -54,7 +72,9 @@ def test_bad_columns_are_refused(changes: dict[str, Any], match: str) -> None:
 def test_non_uniform_sampling_is_resampled_with_a_warning() -> None:
     t = np.arange(SAMPLES) * 1e-3
     t[1::2] += 2e-4  # jitter of 20 % of the step
-    with pytest.warns(ResamplingWarning, match=r"not uniformly sampled .* resampled linearly onto a uniform grid"):
+    with pytest.warns(
+        ResamplingWarning, match=r"not uniformly sampled .* resampled linearly onto a uniform grid"
+    ):
         data = as_motion_data(columns(t=t, x=np.sin(t), f=np.cos(t)))
     steps = np.diff(data.t)
     np.testing.assert_allclose(steps, steps[0], rtol=1e-9)

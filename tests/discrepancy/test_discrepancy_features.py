@@ -39,14 +39,18 @@ def test_a_noisy_position_keeps_the_play() -> None:
     assert features.scales.play > 2e-9  # the position noise, not the encoder step
     play_only = element_deflections(noisy.x, np.array([features.scales.play]))[:, 0]
     spread = position_spread(noisy, features.x)
-    np.testing.assert_array_equal(direction_of_motion(noisy.x, features.x, features.scales.play, spread), play_only)
+    np.testing.assert_array_equal(
+        direction_of_motion(noisy.x, features.x, features.scales.play, spread), play_only
+    )
 
 
 def test_a_pause_inside_one_step_is_not_a_turn() -> None:
     # Up slowly, a 300-sample pause inside one 1 nm step, then back down: friction turns when the
     # motion does (sample 800), not when the filter settles after the last step up.
     dt, step = 1e-3, 1e-9
-    x_true = np.concatenate((np.linspace(0.0, 5.7e-9, 500), np.full(300, 5.7e-9), np.linspace(5.7e-9, 0.0, 500)))
+    x_true = np.concatenate(
+        (np.linspace(0.0, 5.7e-9, 500), np.full(300, 5.7e-9), np.linspace(5.7e-9, 0.0, 500))
+    )
     x = np.round(x_true / step) * step
     data = MotionData(np.arange(x.size) * dt, x, np.zeros(x.size))
     features = compute_features(data)

@@ -59,11 +59,15 @@ def test_final_rms_within_1_2_noise_floors(truth: tuple[str, ...], baseline: tup
 def test_presliding_reports_the_state_equation_exponent() -> None:
     # The generator's elements follow the modified Leuven state equation with n = 2: the bank
     # driven by z (not x) is what brings the final rms to the noise floor.
-    diagnosis = lr.diagnose(make_hidden(BASE + ("presliding_hysteresis",), dt=DT, quantization=FINE).data, BASE)
+    diagnosis = lr.diagnose(
+        make_hidden(BASE + ("presliding_hysteresis",), dt=DT, quantization=FINE).data, BASE
+    )
     (step,) = diagnosis.steps
     assert step.effect == "presliding_hysteresis" and step.params["n"] == 2.0
     weights = [value for name, value in step.params.items() if name.startswith("W")]
-    assert all(w >= 0.0 for w in weights) and sum(weights) == pytest.approx(1.02, rel=0.05)  # the truth: 1.02·Fc
+    assert all(w >= 0.0 for w in weights) and sum(weights) == pytest.approx(
+        1.02, rel=0.05
+    )  # the truth: 1.02·Fc
 
 
 def test_null_case_names_nothing() -> None:
@@ -89,7 +93,9 @@ def test_report_follows_design_section_4() -> None:
     (step,) = report["steps"]
     assert set(step) == {"effect", "where", "rms_before", "rms_after", "params"}
     assert step["rms_after"] < step["rms_before"]
-    assert step["params"]["M"] == pytest.approx(0.05, rel=0.1)  # the generator's MASS (the filtered ẍ is a little low)
+    assert step["params"]["M"] == pytest.approx(
+        0.05, rel=0.1
+    )  # the generator's MASS (the filtered ẍ is a little low)
     assert not step["where"].startswith("everywhere")  # localised, with its numbers
     assert "rms" in step["where"]
     assert set(report["unexplained"]) == {"significant", "where"}

@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import small_log as columns
 
 import leuven_rt.cli
+from conftest import small_log as columns
 from leuven_rt import DataError, InputError, identify
 
 

@@ -31,7 +31,9 @@ ASYMMETRIC_RELATIVE_ERROR = 3.11
 def emps_file() -> Path:
     path = EMPS / "DATA_EMPS.mat"
     if not path.is_file():
-        pytest.skip(f"EMPS benchmark data not found at {path} (expected next to the repository in shared/data/emps)")
+        pytest.skip(
+            f"EMPS benchmark data not found at {path} (expected next to the repository in shared/data/emps)"
+        )
     return path
 
 

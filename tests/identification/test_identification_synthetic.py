@@ -89,7 +89,8 @@ def test_the_model_reproduces_the_noise_free_force(request: pytest.FixtureReques
 
 
 def test_the_number_of_elements_is_chosen_or_given(
-    symmetric: tuple[SyntheticData, IdentificationResult], asymmetric: tuple[SyntheticData, IdentificationResult]
+    symmetric: tuple[SyntheticData, IdentificationResult],
+    asymmetric: tuple[SyntheticData, IdentificationResult],
 ) -> None:
     presliding = next(stage for stage in symmetric[1].report.stages if stage.name == "presliding")
     errors = presliding.details["held_out_rms_by_elements"]
@@ -122,7 +123,9 @@ def test_synthetic_data_is_quantized_noisy_and_true_to_the_simulator() -> None:
     steps = data.x / 5e-8
     np.testing.assert_allclose(steps, np.round(steps), atol=1e-6)
     assert np.max(np.abs(data.x - synthetic.x_true)) <= 2.5e-8 * (1 + 1e-9)
-    np.testing.assert_array_equal(synthetic.force_true, simulate_position(synthetic.params, synthetic.x_true, data.dt))
+    np.testing.assert_array_equal(
+        synthetic.force_true, simulate_position(synthetic.params, synthetic.x_true, data.dt)
+    )
     assert np.std(data.f - synthetic.force_true) == pytest.approx(0.03, rel=0.05)
     v = np.diff(synthetic.x_true) / data.dt
     assert np.count_nonzero(np.diff(np.sign(v[v != 0]))) >= 20  # reversals
@@ -141,7 +144,9 @@ def short_move() -> MotionData:
 def test_no_reversals_is_reported() -> None:
     result = identify(short_move(), elements=3, held_out=0.0)
     assert result.report.reversals == 0
-    assert any("no reversals in the data: presliding not identifiable" in text for text in result.report.warnings)
+    assert any(
+        "no reversals in the data: presliding not identifiable" in text for text in result.report.warnings
+    )
     assert np.isnan(result.report.held_out_rms)
 
 

@@ -9,11 +9,11 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import MAXWELL
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import leuven_rt as lr
+from conftest import MAXWELL
 from leuven_rt.reference import MaxwellSlip
 from leuven_rt.reference.original_leuven import (
     MasingMaxwell,
@@ -43,7 +43,9 @@ def maxwell_forces(w: list[float], delta: list[float], z: np.ndarray) -> np.ndar
     data=st.data(),
     steps=st.lists(st.floats(-3.0, 3.0), min_size=1, max_size=300),
 )
-def test_stack_model_with_masing_curve_is_maxwell_slip(count: int, data: st.DataObject, steps: list[float]) -> None:
+def test_stack_model_with_masing_curve_is_maxwell_slip(
+    count: int, data: st.DataObject, steps: list[float]
+) -> None:
     # Nested reversals of any size, closures of any depth: the two memories agree to rounding.
     w = data.draw(st.lists(st.floats(0.05, 1.0), min_size=count, max_size=count))
     delta = data.draw(st.lists(st.floats(0.2, 4.0), min_size=count, max_size=count))
@@ -94,7 +96,9 @@ def test_depth_below_one_or_not_an_integer_is_rejected(depth: Any) -> None:
         StackHysteresis(TanhCurve(1.0, 1e-6), depth=depth)
 
 
-@pytest.mark.parametrize("kwargs", [dict(F_max=0.0, z_c=1e-6), dict(F_max=1.0, z_c=-1e-6), dict(F_max=math.inf, z_c=1e-6)])
+@pytest.mark.parametrize(
+    "kwargs", [dict(F_max=0.0, z_c=1e-6), dict(F_max=1.0, z_c=-1e-6), dict(F_max=math.inf, z_c=1e-6)]
+)
 def test_bad_curves_are_parameter_errors(kwargs: dict[str, float]) -> None:
     with pytest.raises(lr.ParameterError, match=r"must be finite and > 0"):
         TanhCurve(**kwargs)

@@ -1,4 +1,4 @@
-"""The numpy reference (`leuven_rt.reference`) on its own: the properties DESIGN.md §2 promises.
+"""The numpy reference (`leuven_rt.reference`) on its own: the properties docs/model.md#discrete-step promises.
 
 No comparison with the Rust core here; that lives in its own test file.
 """
@@ -31,7 +31,7 @@ LUGRE = dict(
 def s_of_v(p: dict, v: float) -> float:
     """s(v) = sgn(v)·g(v), written out again so that the test does not trust the module."""
     fc, fs = (p.get("Fc_neg", p["Fc"]), p.get("Fs_neg", p["Fs"])) if v < 0 else (p["Fc"], p["Fs"])
-    return math.copysign(fc + (fs - fc) * math.exp(-abs(v / p["Vs"]) ** p["delta"]), v)
+    return math.copysign(fc + (fs - fc) * math.exp(-(abs(v / p["Vs"]) ** p["delta"])), v)
 
 
 def wobbly_velocity(samples: int, dt: float) -> np.ndarray:

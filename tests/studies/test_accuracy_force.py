@@ -1,5 +1,5 @@
 """The force-driven accuracy case (leuven_rt.studies.accuracy.force_accuracy): a mass on the LuGre-like
-friction of DESIGN.md §2, pushed by a 2 N, 5 Hz sine, against the implicit step 100× finer.
+friction of docs/model.md#accuracy-of-the-schemes, pushed by a 2 N, 5 Hz sine, against the implicit step 100× finer.
 
 Measured (1 s, refine 100): implicit 21.3 %, 4.73 %, 0.481 % of Fs at 100 Hz, 1 kHz, 10 kHz;
 explicit diverges at 100 Hz and 1 kHz (its friction step's stability number dt·|v|·σ0/Fc reaches
@@ -12,7 +12,13 @@ import math
 
 import pytest
 
-from leuven_rt.studies.accuracy import MassAccuracyRow, force_accuracy, force_report, format_force_table, full_report
+from leuven_rt.studies.accuracy import (
+    MassAccuracyRow,
+    force_accuracy,
+    force_report,
+    format_force_table,
+    full_report,
+)
 
 RATES = (100.0, 1000.0, 10000.0)
 
@@ -33,7 +39,9 @@ def test_implicit_converges_with_the_rate(rows: dict[tuple[float, str], MassAccu
     assert positions[1] < positions[0] / 5 and positions[2] < positions[1] / 5
 
 
-def test_explicit_diverges_where_its_stability_numbers_exceed_2(rows: dict[tuple[float, str], MassAccuracyRow]) -> None:
+def test_explicit_diverges_where_its_stability_numbers_exceed_2(
+    rows: dict[tuple[float, str], MassAccuracyRow],
+) -> None:
     assert rows[(100.0, "explicit")].diverged and rows[(1000.0, "explicit")].diverged
     explicit = rows[(10000.0, "explicit")]
     assert not explicit.diverged and explicit.rms_error_relative_to_Fs < 0.02

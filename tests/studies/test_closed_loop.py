@@ -48,6 +48,7 @@ def test_runs_are_what_they_claim(comparison: Comparison) -> None:
     # The stage really has friction, of the true level while sliding.
     friction = runs["none"].friction
     assert 0.9 * comparison.scenario.true.Fc < np.max(np.abs(friction)) < comparison.scenario.true.Fs
+
     # Leuven feedforward predicts the true friction far better than Coulomb-only does.
     def residual(name: str) -> float:
         return float(np.sqrt(np.mean((runs[name].friction - runs[name].compensation_force) ** 2)))
@@ -55,7 +56,9 @@ def test_runs_are_what_they_claim(comparison: Comparison) -> None:
     assert residual("leuven_feedforward") < 0.5 * residual("coulomb")
 
 
-@pytest.mark.parametrize("change", [dict(bandwidth=50.0), dict(frequency=2.0), dict(encoder_resolution=1e-6, noise=2e-7)])
+@pytest.mark.parametrize(
+    "change", [dict(bandwidth=50.0), dict(frequency=2.0), dict(encoder_resolution=1e-6, noise=2e-7)]
+)
 def test_the_ratios_hold_beyond_the_default_scenario(change: dict[str, float]) -> None:
     """A stiffer loop, faster motion and a coarse, noisy encoder: still above the targets."""
     other = compare(replace(Scenario(), **change))
@@ -64,7 +67,9 @@ def test_the_ratios_hold_beyond_the_default_scenario(change: dict[str, float]) -
         assert other.ratio("coulomb", leuven) >= 1.5, (change, leuven)
 
 
-def test_cli_prints_the_table_and_writes_the_figure(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_cli_prints_the_table_and_writes_the_figure(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     assert main(["control", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "| leuven_feedforward |" in out and "| coulomb |" in out

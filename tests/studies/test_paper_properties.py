@@ -19,7 +19,7 @@ PARAMS = lr.Params(
 
 def stribeck_level(v: np.ndarray) -> np.ndarray:
     p = PARAMS
-    return p.Fc + (p.Fs - p.Fc) * np.exp(-np.abs(v / p.Vs) ** p.delta)
+    return p.Fc + (p.Fs - p.Fc) * np.exp(-(np.abs(v / p.Vs) ** p.delta))
 
 
 def test_stribeck_effect_steady_force_is_s_of_v_plus_viscous() -> None:
@@ -27,7 +27,9 @@ def test_stribeck_effect_steady_force_is_s_of_v_plus_viscous() -> None:
     # the largest Δ) so that every element slips: the last force is s(v) + σ2·v.
     # Measured: max error 1.3e-15 N. Tolerance 1e-9 N.
     v = np.concatenate([-np.logspace(-5, -1, 9), np.logspace(-5, -1, 9)])
-    last = np.array([lr.simulate(PARAMS, np.full(4000, value), 2e-3 / (abs(value) * 4000))[-1] for value in v])
+    last = np.array(
+        [lr.simulate(PARAMS, np.full(4000, value), 2e-3 / (abs(value) * 4000))[-1] for value in v]
+    )
     expected = np.sign(v) * stribeck_level(v) + PARAMS.sigma2 * v
     assert np.max(np.abs(last - expected)) < 1e-9
     # ... and it is the Stribeck curve, not a constant: 0.5 N between 10 µm/s and 0.1 m/s.

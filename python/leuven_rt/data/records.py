@@ -1,4 +1,4 @@
-"""Measured motion data: loading (CSV of DESIGN.md §4, EMPS .mat files), validation, resampling
+"""Measured motion data: loading (CSV of docs/data-and-reports.md#measured-data, EMPS .mat files), validation, resampling
 and the zero-phase derivative estimates that every fit works from.
 
 Bad data is refused once, here, with a :class:`DataError` naming the column; the fitting modules
@@ -37,7 +37,6 @@ MAX_FORCE = 1e7  # N
 MAX_POSITION = 1e3  # m
 MAX_VELOCITY = 1e3  # m/s
 STEP_RANGE = (1e-7, 1.0)  # s
-
 
 
 @dataclass(frozen=True, eq=False)
@@ -191,7 +190,7 @@ def resample_uniform(columns: Mapping[str, FloatArray]) -> dict[str, FloatArray]
 
 
 def load_csv(path: Path) -> dict[str, FloatArray]:
-    """Columns of a CSV file with a header line (DESIGN.md §4: ``t,x,f[,v]``)."""
+    """Columns of a CSV file with a header line (docs/data-and-reports.md#measured-data: ``t,x,f[,v]``)."""
     try:
         table = np.genfromtxt(path, delimiter=",", names=True, dtype=np.float64, encoding="utf-8")
     except (OSError, ValueError) as error:

@@ -68,7 +68,9 @@ def fit_linear(
     if target.ndim != 1 or not np.isfinite(target).all():
         raise DataError("the fitted signal must be one-dimensional and finite")
     if target.size < len(names):
-        raise DataError(f"need at least {len(names)} samples for {len(names)} coefficients, got {target.size}")
+        raise DataError(
+            f"need at least {len(names)} samples for {len(names)} coefficients, got {target.size}"
+        )
     bounded = set(names) if nonnegative is True else set(nonnegative or ())
     unknown = bounded - set(names)
     if unknown:

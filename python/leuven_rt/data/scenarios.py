@@ -20,9 +20,7 @@ def standard_params(elements: int = 10) -> Params:
     delta = 1e-5 * index / elements
     weights = (elements + 1 - index).astype(float)
     w = 2.0 * weights / weights.sum()
-    return Params(
-        Fc=1.0, Fs=1.5, Vs=1e-3, delta=2.0, n=2.0, sigma1=30.0, sigma2=0.4, W=w, Delta=delta
-    )
+    return Params(Fc=1.0, Fs=1.5, Vs=1e-3, delta=2.0, n=2.0, sigma1=30.0, sigma2=0.4, W=w, Delta=delta)
 
 
 @dataclass(frozen=True)

@@ -66,7 +66,9 @@ def find_segments(x: FloatArray, x_filtered: FloatArray) -> Segments:
     return Segments(starts=starts, travel=travel, direction=direction, swing=swing)
 
 
-def transition_lengths(segments: Segments, force: FloatArray, noise_std: float, from_start: bool = False) -> FloatArray:
+def transition_lengths(
+    segments: Segments, force: FloatArray, noise_std: float, from_start: bool = False
+) -> FloatArray:
     """Travel after each reversal until the force change reaches :data:`TRANSITION_SHARE` of its
     value in the second half of the segment, for the segments that clearly reach sliding (the
     transition takes less than a quarter of the travel, and the force change is well above the

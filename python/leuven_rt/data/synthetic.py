@@ -108,7 +108,9 @@ def make_data(
     params = standard_params() if params is None else as_params(params)
     if presliding_range is None:
         # Linear hysteresis: the spring reaches Fs at Fs/sigma0; a few times that covers the transition.
-        presliding_range = max(params.Delta) if params.Delta is not None else 3.0 * params.Fs / (params.sigma0 or 1.0)
+        presliding_range = (
+            max(params.Delta) if params.Delta is not None else 3.0 * params.Fs / (params.sigma0 or 1.0)
+        )
     rng = np.random.default_rng(seed)
     x_true = excitation(dt, presliding_range, params.Vs, rng, speeds)
     force_true = simulate_position(params, x_true, dt)

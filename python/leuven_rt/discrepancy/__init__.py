@@ -1,10 +1,10 @@
 """The discrepancy workflow: point it at a log of a machine, and it names what the friction model
-is missing (the effect catalogue of DESIGN.md §3), where, and how much better the model gets.
+is missing (the effect catalogue of docs/effects.md), where, and how much better the model gets.
 
 :mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.drive` (the presliding
 bank driven by the model's state), :mod:`.model` (fits),
 :mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
-:mod:`.diagnose` (the rounds), :mod:`.report` (JSON of DESIGN.md §4), :mod:`.plot` (figure),
+:mod:`.diagnose` (the rounds), :mod:`.report` (JSON of docs/data-and-reports.md#diagnosis-report), :mod:`.plot` (figure),
 :mod:`.hidden` (generated data with hidden effects, to test it on).
 
 It works from the data toolkit :mod:`leuven_rt.data`, not from the identification workflow.

@@ -34,7 +34,7 @@ UNEXPLAINED = 0.2
 def diagnose(
     data: DataLike, baseline: str | Sequence[str] = DEFAULT_BASELINE, *, progress: bool = False
 ) -> Diagnosis:
-    """Names the catalogue effects (DESIGN.md §3) that ``baseline`` misses in ``data``.
+    """Names the catalogue effects (docs/effects.md) that ``baseline`` misses in ``data``.
 
     ``data``: a :class:`~leuven_rt.MotionData`, a ``.csv`` (t, x, f[, v]) or EMPS ``.mat`` path,
     or a mapping of columns. ``baseline``: effect names, as a list or comma-separated.
@@ -93,4 +93,3 @@ def diagnose(
         final_model=final, regions_before=regions(features, residuals[0]), regions_after=regions(features, residual),
         features=features, residuals=residuals,
     )  # fmt: skip
-

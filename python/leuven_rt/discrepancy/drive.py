@@ -1,6 +1,6 @@
 """The presliding bank driven by the modified Leuven model's own state.
 
-In the model (DESIGN.md §1) the Maxwell-slip elements are driven not by the position x but by
+In the model (docs/model.md#hysteresis-force) the Maxwell-slip elements are driven not by the position x but by
 the deflection z of the state equation, dz/dt = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ: right after a
 reversal z runs ahead of x (up to twice as fast), and as Fh nears the sliding level it stops
 following x. A bank driven by x alone (rate-independent Maxwell slip) misses both, by about
@@ -55,4 +55,6 @@ class Drive:
 
     def apply(self, features: Features) -> Features:
         """``features`` with the bank driven by z instead of x."""
-        return dataclasses.replace(features, bank=element_deflections(self.deflection(features), features.scales.deflections))
+        return dataclasses.replace(
+            features, bank=element_deflections(self.deflection(features), features.scales.deflections)
+        )

@@ -1,4 +1,4 @@
-"""The effect catalogue of DESIGN.md §3: each effect is a set of named regressor columns (a model
+"""The effect catalogue of docs/effects.md: each effect is a set of named regressor columns (a model
 term that can be added, fitted and removed), built from :class:`~.features.Features`.
 
 The model is linear in its coefficients once the shape of the Stribeck curve (Vs, δ) is fixed;
@@ -37,7 +37,7 @@ Columns = Callable[[Features, Collection[str], Shape | None], dict[str, FloatArr
 class Effect:
     name: str
     missing: str
-    """What is missing from a model without it (DESIGN.md §3)."""
+    """What is missing from a model without it (docs/effects.md#the-effects)."""
     columns: Columns
     nonnegative: tuple[str, ...] = ()
 
@@ -56,7 +56,7 @@ def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict
 def _stribeck(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
     if shape is None:
         raise ValueError("the Stribeck columns need a shape (Vs, delta)")
-    return {"Fs_minus_Fc": f.sign * np.exp(-np.abs(f.v / shape.Vs) ** shape.delta)}
+    return {"Fs_minus_Fc": f.sign * np.exp(-(np.abs(f.v / shape.Vs) ** shape.delta))}
 
 
 def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
@@ -82,7 +82,11 @@ CATALOGUE: dict[str, Effect] = {
             nonnegative=tuple(f"W{j + 1}" for j in range(ELEMENTS)),
         ),
         Effect("position_dependence", "the friction level varies along the stroke", _position),
-        Effect("offset", "a constant force bias in the measurement", lambda f, m, s: {"offset": np.ones_like(f.v)}),
+        Effect(
+            "offset",
+            "a constant force bias in the measurement",
+            lambda f, m, s: {"offset": np.ones_like(f.v)},
+        ),
         Effect("inertia", "the force includes m·ẍ", lambda f, m, s: {"M": f.a}),
     )
 }
@@ -96,7 +100,9 @@ def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tup
         raise InputError(f"`{argument}` must be effect names (strings), got {items!r}")
     unknown = [name for name in items if name not in CATALOGUE]
     if unknown:
-        raise InputError(f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}")
+        raise InputError(
+            f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}"
+        )
     if len(set(items)) != len(items):
         raise InputError(f"`{argument}` repeats effects: got {items}")
     return tuple(items)

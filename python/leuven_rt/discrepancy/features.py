@@ -88,7 +88,9 @@ class Features:
     dt: float
 
 
-def direction_of_motion(raw: FloatArray, filtered: FloatArray, play: float, spread: tuple[float, float]) -> FloatArray:
+def direction_of_motion(
+    raw: FloatArray, filtered: FloatArray, play: float, spread: tuple[float, float]
+) -> FloatArray:
     """sgn(v) in [−1, 1] from the recorded position ``raw`` (and its zero-phase ``filtered``
     version, for the turns inside one quantization step when the position's ``spread``,
     (resolution, noise) from :func:`position_spread`, says it is quantization-limited)."""

@@ -79,7 +79,9 @@ def make_hidden(
     # The direction the added terms follow is that of a unit Coulomb level (one element below the
     # encoder's resolution) through the same simulator, so that they flip on the same sample as
     # the friction's Coulomb part; position dependence changes that level, not the presliding.
-    unit = Params(Fc=1.0, Fs=1.0, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=0.0, W=(1.02,), Delta=(STIFF_RANGE,))
+    unit = Params(
+        Fc=1.0, Fs=1.0, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=0.0, W=(1.02,), Delta=(STIFF_RANGE,)
+    )
     direction = simulate_position(unit, x_true, dt)
     if asymmetric:
         force += (ASYMMETRY - 1.0) * sigma2 * np.minimum(v_true, 0.0)
@@ -95,5 +97,7 @@ def make_hidden(
     measured = force + rng.normal(0.0, noise_std, force.size)
     x = np.round(x_true / quantization) * quantization if quantization > 0 else x_true.copy()
     t = np.arange(x.size) * dt
-    data = MotionData(t, x, measured, v_true if with_velocity else None, source=f"hidden({','.join(effects)})")
+    data = MotionData(
+        t, x, measured, v_true if with_velocity else None, source=f"hidden({','.join(effects)})"
+    )
     return HiddenData(data, effects, drift, force, noise_std, x_true, direction)

@@ -63,7 +63,10 @@ class ModelFit:
         return out
 
     def to_dict(self) -> dict[str, object]:
-        out: dict[str, object] = {"effects": list(self.effects), "params": {name: self.params(name) for name in self.effects}}
+        out: dict[str, object] = {
+            "effects": list(self.effects),
+            "params": {name: self.params(name) for name in self.effects},
+        }
         if self.drive is not None:  # the weights that shaped z, to reproduce the prediction
             out["presliding_drive"] = {"n": self.drive.n, "W": list(self.drive.weights)}
         return out
@@ -74,8 +77,6 @@ def design(effects: Sequence[str], features: Features, shape: Shape | None) -> d
     for name in effects:
         columns.update(CATALOGUE[name].columns(features, effects, shape))
     return columns
-
-
 
 
 def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Drive | None = None) -> ModelFit:
@@ -89,9 +90,13 @@ def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Dri
     return _fit_driven(effects, features, rows)
 
 
-def _fit_linear_part(effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None) -> ModelFit:
+def _fit_linear_part(
+    effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None
+) -> ModelFit:
     shape = _fit_shape(effects, features, rows) if "stribeck" in effects else None
-    groups = {name: tuple(CATALOGUE[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects}
+    groups = {
+        name: tuple(CATALOGUE[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects
+    }
     if not effects:
         return ModelFit(effects, {}, groups, shape, drive)
     columns = design(effects, features, shape)
@@ -137,7 +142,9 @@ def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shap
     # Only the Stribeck column moves with the shape: the normal equations of the other columns
     # are formed once, and each trial adds one row and column (plain least squares, no bounds).
     others = [name for name in effects if name != "stribeck"]
-    matrix = np.column_stack([c[rows] for c in design(others, features, None).values()] or [np.zeros(int(rows.sum()))])
+    matrix = np.column_stack(
+        [c[rows] for c in design(others, features, None).values()] or [np.zeros(int(rows.sum()))]
+    )
     target, sign, speed = features.force[rows], features.sign[rows], np.abs(features.v[rows])
     gram, moment = matrix.T @ matrix, matrix.T @ target
 

@@ -1,4 +1,4 @@
-"""The diagnosis report: the JSON object of DESIGN.md §4, plus the per-region numbers and the
+"""The diagnosis report: the JSON object of docs/data-and-reports.md#diagnosis-report, plus the per-region numbers and the
 residuals kept for the figure and for people."""
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ class Step:
 
 @dataclass(frozen=True, eq=False)
 class Diagnosis:
-    """What :func:`leuven_rt.diagnose` returns; :meth:`to_dict` is the JSON of DESIGN.md §4."""
+    """What :func:`leuven_rt.diagnose` returns; :meth:`to_dict` is the JSON of docs/data-and-reports.md#diagnosis-report."""
 
     samples: int
     noise_std: float
@@ -54,8 +54,13 @@ class Diagnosis:
             "rms_after": self.rms_after,
             "named_effects": self.named_effects,
             "steps": [
-                {"effect": s.effect, "where": s.where, "rms_before": s.rms_before, "rms_after": s.rms_after,
-                 "params": s.params}  # fmt: skip
+                {
+                    "effect": s.effect,
+                    "where": s.where,
+                    "rms_before": s.rms_before,
+                    "rms_after": s.rms_after,
+                    "params": s.params,
+                }  # fmt: skip
                 for s in self.steps
             ],
             "unexplained": {"significant": self.unexplained_significant, "where": self.unexplained_where},

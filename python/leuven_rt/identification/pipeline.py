@@ -44,12 +44,18 @@ STEADY_SHARE = 0.1
 
 def _check_options(elements: Any, held_out: Any, max_evaluations: Any) -> None:
     if elements is not None and (
-        isinstance(elements, bool) or not isinstance(elements, numbers.Integral) or not 1 <= elements <= MAX_ELEMENTS
+        isinstance(elements, bool)
+        or not isinstance(elements, numbers.Integral)
+        or not 1 <= elements <= MAX_ELEMENTS
     ):
         raise InputError(f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {elements!r}")
     if isinstance(held_out, bool) or not isinstance(held_out, numbers.Real) or not 0.0 <= held_out <= 0.5:
         raise InputError(f"`held_out` must be a fraction in [0, 0.5], got {held_out!r}")
-    if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, numbers.Integral) or max_evaluations < 3:
+    if (
+        isinstance(max_evaluations, bool)
+        or not isinstance(max_evaluations, numbers.Integral)
+        or max_evaluations < 3
+    ):
         raise InputError(f"`max_evaluations` must be an integer >= 3, got {max_evaluations!r}")
 
 
@@ -81,7 +87,7 @@ def identify(
 ) -> IdentificationResult:
     """Fits the modified Leuven model to a log of position and force.
 
-    ``data``: a :class:`MotionData`, a ``.csv`` (DESIGN.md §4) or EMPS ``.mat`` path, or a
+    ``data``: a :class:`MotionData`, a ``.csv`` (docs/data-and-reports.md#measured-data) or EMPS ``.mat`` path, or a
     mapping of columns ``t``, ``x``, ``f`` [, ``v``]. ``elements``: the number N of Maxwell-slip
     elements (default: chosen by held-out presliding error among 1..12). ``asymmetric``: fit
     ``Fc_neg``, ``Fs_neg`` too. ``cutoff``: the position filter's cutoff [Hz] (default a tenth
@@ -119,7 +125,9 @@ def identify(
                                 presliding_range, candidates)  # fmt: skip
     # The regression assumes z follows x, which underestimates the weights near the transition;
     # model_params scales them up to balance Fs when they fall short, and the refinement goes on.
-    weight_scale = max(1.0, WEIGHT_MARGIN * max(sliding.Fs, sliding.Fs_neg or 0.0) / float(np.sum(presliding.W)))
+    weight_scale = max(
+        1.0, WEIGHT_MARGIN * max(sliding.Fs, sliding.Fs_neg or 0.0) / float(np.sum(presliding.W))
+    )
     stages.append(Stage("presliding", presliding.fit.rms, int(np.count_nonzero(inside)), presliding.fit.condition,
                         {"elements": presliding.elements, "held_out_rms_by_elements": presliding.held_out_rms,
                          "weights_scaled_by": weight_scale}))  # fmt: skip
@@ -160,4 +168,3 @@ def _sliding_rows(segments: Segments, derivatives: Derivatives, presliding_range
     v, a = derivatives.v, derivatives.a
     steady = np.abs(a) * presliding_range <= STEADY_SHARE * v**2
     return (segments.travel > SLIDING_AFTER * presliding_range) & steady & (v != 0.0)
-

@@ -33,9 +33,7 @@ TOLERANCE = 1e-6
 WEIGHT_MARGIN = 1.001
 
 
-def model_params(
-    values: dict[str, float], W: FloatArray, Delta: FloatArray
-) -> Params:
+def model_params(values: dict[str, float], W: FloatArray, Delta: FloatArray) -> Params:
     """A :class:`Params` from sliding values, n, σ1 and the elements; weights too weak to balance
     the Stribeck curve (the model's rule sum(W) > max(Fs, Fs_neg)) are scaled up to just balance
     it, so that every trial of an optimiser is a valid model."""
@@ -63,7 +61,9 @@ class SimulationError:
     on a thread pool: the Rust core releases the GIL, so the columns go as fast as there are cores.
     """
 
-    def __init__(self, x: FloatArray, dt: float, force: FloatArray, rows: FloatArray, tick: Callable[[], None]) -> None:
+    def __init__(
+        self, x: FloatArray, dt: float, force: FloatArray, rows: FloatArray, tick: Callable[[], None]
+    ) -> None:
         self.x, self.dt, self.force, self.rows, self.tick = x, dt, force, rows, tick
         self.evaluations = 0
         self._count = threading.Lock()
@@ -145,7 +145,9 @@ def refine_jointly(start: Params, objective: SimulationError, max_evaluations: i
     tiny = 1e-9 * start.Fc
 
     def build(p: FloatArray) -> Params:
-        values = dict(Fc=p[0], Fs=p[0] + p[1], Vs=float(np.exp(p[2])), delta=p[3], n=p[4], sigma1=p[5], sigma2=p[6])
+        values = dict(
+            Fc=p[0], Fs=p[0] + p[1], Vs=float(np.exp(p[2])), delta=p[3], n=p[4], sigma1=p[5], sigma2=p[6]
+        )
         if asymmetric:
             values.update(Fc_neg=p[7 + count], Fs_neg=p[7 + count] + p[8 + count])
         return model_params({key: float(value) for key, value in values.items()}, p[7 : 7 + count], Delta)

@@ -57,7 +57,7 @@ def sliding_force(
     negative = v < 0
     fc = np.where(negative, Fc if Fc_neg is None else Fc_neg, Fc)
     fs = np.where(negative, Fs if Fs_neg is None else Fs_neg, Fs)
-    return np.sign(v) * (fc + (fs - fc) * np.exp(-np.abs(v / Vs) ** delta)) + sigma2 * v
+    return np.sign(v) * (fc + (fs - fc) * np.exp(-(np.abs(v / Vs) ** delta))) + sigma2 * v
 
 
 def scaled_condition(jacobian: FloatArray) -> float:
@@ -81,7 +81,10 @@ def fit_sliding(v: FloatArray, force: FloatArray, asymmetric: bool = False) -> S
             f"presliding transition, got {v.size}; the data must include sliding at steady speed"
         )
     speed = np.abs(v)
-    if asymmetric and (np.count_nonzero(v > 0) < MIN_SLIDING_SAMPLES // 2 or np.count_nonzero(v < 0) < MIN_SLIDING_SAMPLES // 2):
+    if asymmetric and (
+        np.count_nonzero(v > 0) < MIN_SLIDING_SAMPLES // 2
+        or np.count_nonzero(v < 0) < MIN_SLIDING_SAMPLES // 2
+    ):
         raise DataError("`asymmetric` needs sliding in both directions, but the data slides in one only")
     # A straight line through the fast half gives Fc and σ2 to start from.
     fast = speed >= np.median(speed)
@@ -107,7 +110,9 @@ def fit_sliding(v: FloatArray, force: FloatArray, asymmetric: bool = False) -> S
     upper = [np.inf, np.inf, vs_bounds[1], DELTA_BOUNDS[1], np.inf] + ([np.inf, np.inf] if asymmetric else [])
     best = None
     for start_vs in np.geomspace(low, max(high, 2.0 * low), 5):
-        start = [level, peak - level, np.log(start_vs), 2.0, slope] + ([level, peak - level] if asymmetric else [])
+        start = [level, peak - level, np.log(start_vs), 2.0, slope] + (
+            [level, peak - level] if asymmetric else []
+        )
         result = least_squares(residual, start, bounds=(lower, upper), x_scale="jac")
         if best is None or result.cost < best.cost:
             best = result

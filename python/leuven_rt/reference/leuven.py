@@ -1,6 +1,6 @@
 """The discrete step of the modified Leuven model in plain numpy, written as the specification.
 
-This is DESIGN.md §2 ("Discrete step") spelled out one sample at a time, with nothing traded for
+This is docs/model.md#discrete-step spelled out one sample at a time, with nothing traded for
 speed. The Rust core (`leuven_rt.simulate`) must agree with it; the tests compare the two, so the
 implicit step's root is found here by a method independent of the Rust solver (see
 :func:`implicit_root`).
@@ -237,9 +237,7 @@ def _run_channel(params: Params, v: FloatArray, dt: float, scheme: str) -> Float
     return out
 
 
-def simulate(
-    params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit"
-) -> FloatArray:
+def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
@@ -254,9 +252,7 @@ def simulate(
     return out[0] if one_dimensional else out
 
 
-def simulate_position(
-    params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit"
-) -> FloatArray:
+def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
     params = as_params(params)
     array, one_dimensional = as_signal(x, "x")

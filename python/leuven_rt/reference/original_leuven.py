@@ -112,7 +112,9 @@ class MasingMaxwell:
         self.W = np.asarray(W, dtype=np.float64)
         self.Delta = np.asarray(Delta, dtype=np.float64)
         if self.W.shape != self.Delta.shape or self.W.ndim != 1 or self.W.size == 0:
-            raise ParameterError(f"`W` and `Delta` must be 1-D of the same length, got {self.W.shape} and {self.Delta.shape}")
+            raise ParameterError(
+                f"`W` and `Delta` must be 1-D of the same length, got {self.W.shape} and {self.Delta.shape}"
+            )
         if not (np.all(self.W > 0) and np.all(self.Delta > 0) and np.all(np.isfinite(self.W * self.Delta))):
             raise ParameterError("`W` and `Delta` must be finite and > 0")
         # Fd is piecewise linear with knots at ±2Δᵢ: tabulate it for the inverse.
@@ -264,9 +266,7 @@ class OriginalLeuven:
     sigma1, sigma2 are used; Fc_neg/Fs_neg too), transition curve ``curve`` (default: the
     Masing curve of the params' Maxwell-slip bank) and stacks of ``depth`` extrema each."""
 
-    def __init__(
-        self, params: ParamsLike, depth: int, curve: TransitionCurve | None = None
-    ) -> None:
+    def __init__(self, params: ParamsLike, depth: int, curve: TransitionCurve | None = None) -> None:
         self.params = as_params(params)
         if curve is None:
             if self.params.W is None or self.params.Delta is None:
@@ -340,6 +340,7 @@ class OriginalLeuven:
         if z - r0 == z:  # no representable move: z is the root to rounding (includes v = 0)
             y = z
         else:
+
             def residual(y: float) -> float:
                 return (y - z) - dt * self.rate(y, v)
 

@@ -1,11 +1,11 @@
 """Accuracy of the discrete step: explicit vs implicit against a much finer solution.
 
-DESIGN.md §2 claims that with classic LuGre-like stiffness the explicit (forward Euler) step is
+docs/model.md#accuracy-of-the-schemes states that with classic LuGre-like stiffness the explicit (forward Euler) step is
 useless at control-loop rates while the implicit (backward Euler) step stays accurate. This module
 measures that claim so the README can quote numbers anyone can rerun (``python
 benches/accuracy.py``) and the tests can hold the implicit scheme to it.
 
-Scenario (DESIGN.md §2): LuGre, i.e. linear hysteresis Fh = σ0·z with n = 1, σ0 = 1e5 N/m,
+Scenario (docs/model.md#accuracy-of-the-schemes): LuGre, i.e. linear hysteresis Fh = σ0·z with n = 1, σ0 = 1e5 N/m,
 Fc = 1 N, Fs = 1.5 N, Vs = 1 mm/s, δ = 2, σ1 = √σ0 ≈ 316 N·s/m, σ2 = 0.4 N·s/m, driven from rest
 by v(t) = 10 mm/s · sin(2π·5 Hz·t) for 1 s.
 
@@ -29,7 +29,7 @@ from ..mechanics import simulate_mass
 from ..params import Params
 from ..simulation import simulate
 
-#: The LuGre-like parameter set of DESIGN.md §2; σ1 = √σ0 is the usual critically damped choice
+#: The LuGre-like parameter set of docs/model.md#accuracy-of-the-schemes; σ1 = √σ0 is the usual critically damped choice
 #: for a unit mass on the bristle spring.
 LUGRE = Params(
     Fc=1.0,
@@ -151,9 +151,7 @@ def format_table(rows: Sequence[AccuracyRow]) -> str:
         "|---:|---|---:|---:|---:|",
     ]
     for row in rows:
-        relative = (
-            "diverged" if row.diverged else f"{100.0 * row.rms_error_relative_to_Fs:.3g} %"
-        )
+        relative = "diverged" if row.diverged else f"{100.0 * row.rms_error_relative_to_Fs:.3g} %"
         lines.append(
             f"| {row.rate_hz:g} | {row.scheme} | {_number(row.rms_error)} | {relative} "
             f"| {_number(row.max_error)} |"
@@ -169,7 +167,7 @@ def report(
     """The accuracy tables the README quotes: one per sine amplitude, with the stability numbers.
 
     Linearised, the state equation is dz/dt = v − (|v|·σ0/g)·z, so forward Euler is stable only
-    while dt·|v|·σ0/g(v) < 2. At DESIGN.md's 10 mm/s that number peaks at exactly 1 at 1 kHz, so
+    while dt·|v|·σ0/g(v) < 2. At the 10 mm/s of docs/model.md#accuracy-of-the-schemes that number peaks at exactly 1 at 1 kHz, so
     the explicit step is still stable there; 30 mm/s shows what happens past the limit.
     """
     p = LUGRE
@@ -191,8 +189,7 @@ def report(
             # |v| peaks where g(v) is close to Fc.
             worst = amplitude * p.sigma0 / p.Fc / rate
             lines.append(
-                f"explicit stability number at {rate:g} Hz: dt*max|v|*sigma0/Fc = {worst:.3g} "
-                "(stable < 2)"
+                f"explicit stability number at {rate:g} Hz: dt*max|v|*sigma0/Fc = {worst:.3g} (stable < 2)"
             )
     return "\n".join(lines)
 

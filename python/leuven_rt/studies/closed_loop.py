@@ -91,7 +91,9 @@ class Scenario:
             raise InputError(f"`noise` must be finite and >= 0, got {self.noise!r}")
         ratio = self.plant_rate / self.rate
         if abs(ratio - round(ratio)) > 1e-9 or round(ratio) < 1:
-            raise InputError(f"`plant_rate` must be a multiple of `rate`, got {self.plant_rate} and {self.rate}")
+            raise InputError(
+                f"`plant_rate` must be a multiple of `rate`, got {self.plant_rate} and {self.rate}"
+            )
 
 
 @dataclass(frozen=True)
@@ -270,7 +272,9 @@ def plot(comparison: Comparison, path: str | Path) -> Path:
     drawing, (whole, zoom) = figure(2, 1, size=(9, 7), layout="constrained")
     reversal = comparison.reversals[len(comparison.reversals) // 2]
     for name, run in comparison.runs.items():
-        whole.plot(run.t, run.error * 1e6, label=f"{name} (RMS {comparison.metrics[name].rms * 1e6:.2f} µm)", lw=0.9)
+        whole.plot(
+            run.t, run.error * 1e6, label=f"{name} (RMS {comparison.metrics[name].rms * 1e6:.2f} µm)", lw=0.9
+        )
         window = (run.t > reversal - 0.05) & (run.t < reversal + 0.15)
         zoom.plot((run.t[window] - reversal) * 1e3, run.error[window] * 1e6, label=name, lw=1.2)
     for t in comparison.reversals:
@@ -282,7 +286,6 @@ def plot(comparison: Comparison, path: str | Path) -> Path:
              title="around one velocity reversal (quadrant glitch)")  # fmt: skip
     zoom.legend(fontsize=8)
     return save(drawing, path, dpi=120)
-
 
 
 def run(out: Path) -> str:

@@ -34,7 +34,13 @@ from ..errors import StackOverflowError
 from ..mechanics import MassSystem
 from ..params import Params
 from ..reference.leuven import MaxwellSlip
-from ..reference.original_leuven import MasingMaxwell, OriginalLeuven, OriginalLeuvenMass, StackHysteresis, TanhCurve
+from ..reference.original_leuven import (
+    MasingMaxwell,
+    OriginalLeuven,
+    OriginalLeuvenMass,
+    StackHysteresis,
+    TanhCurve,
+)
 
 #: The friction model of Fig. 1 and the free response: four Maxwell-slip elements, and the
 #: original model with the Masing transition curve of the same bank (same hysteresis, so the
@@ -233,8 +239,12 @@ def figure_4_5(out: Path) -> FigureReport:
         axes[2].plot(z * 1e6, maxwell, style, label=name)
     za = PATH_1[-1] * Z_MAX * 1e6
     axes[0].set(xlabel="sample", ylabel="deflection z [µm]", title="Fig. 4: z against time")
-    axes[1].set(xlabel="deflection z [µm]", ylabel="Fh [N]", title="Fig. 5 top: stack implementation (tanh curve)")
-    axes[2].set(xlabel="deflection z [µm]", ylabel="Fh [N]", title=f"Fig. 5 bottom: Maxwell slip, {ELEMENTS} elements")
+    axes[1].set(
+        xlabel="deflection z [µm]", ylabel="Fh [N]", title="Fig. 5 top: stack implementation (tanh curve)"
+    )
+    axes[2].set(
+        xlabel="deflection z [µm]", ylabel="Fh [N]", title=f"Fig. 5 bottom: Maxwell slip, {ELEMENTS} elements"
+    )
     for ax, index in ((axes[1], 1), (axes[2], 2)):
         ax.annotate("a", (za, runs[0][index][-1]), fontsize=14, xytext=(6, -4), textcoords="offset points")
         ax.plot([za], [runs[0][index][-1]], "ko")
@@ -302,22 +312,30 @@ def figure_free_response(out: Path) -> FigureReport:
     drawing, (position, memory) = figure(2, 1, size=(11, 7), sharex=True)
     ms = 1e3
     position.plot(run.t * ms, run.x_modified * 1e6, label="modified model (Maxwell slip)", linewidth=1.0)
-    position.plot(run.t[:n] * ms, run.x_original * 1e6, "--", label="original Leuven model (stacks)", linewidth=1.0)
+    position.plot(
+        run.t[:n] * ms, run.x_original * 1e6, "--", label="original Leuven model (stacks)", linewidth=1.0
+    )
     position.set(ylabel="position x [µm]", title="Free response of a mass-spring system with friction, "
                  f"released at x = {FREE_START * 1e6:g} µm")  # fmt: skip
     memory.step(run.t[:n] * ms, run.stack_size, where="post", label="original: extrema on the stacks")
     memory.axhline(run.elements, color="C1", label=f"Maxwell slip: {run.elements} element positions")
-    memory.axhline(2 * FREE_DEPTH, color="grey", linestyle=":", label=f"stack capacity (2 × depth {FREE_DEPTH})")
+    memory.axhline(
+        2 * FREE_DEPTH, color="grey", linestyle=":", label=f"stack capacity (2 × depth {FREE_DEPTH})"
+    )
     if run.overflow is not None:
         memory.axvline(run.t[n] * ms, color="red", linewidth=0.8)
-        memory.annotate("overflow", (run.t[n] * ms, FREE_DEPTH), color="red", xytext=(4, 0), textcoords="offset points")
+        memory.annotate(
+            "overflow", (run.t[n] * ms, FREE_DEPTH), color="red", xytext=(4, 0), textcoords="offset points"
+        )
     memory.set(xlabel="time [ms]", ylabel="memory [numbers]")
     for ax in (position, memory):
         ax.legend(loc="upper right")
         ax.grid(alpha=0.3)
     drawing.tight_layout()
     path = save(drawing, out / "free_response_memory.png", dpi=110)
-    lines = [f"Free response: m = {FREE_MASS} kg, k = {FREE_STIFFNESS:g} N/m, released at {FREE_START * 1e6:g} µm"]
+    lines = [
+        f"Free response: m = {FREE_MASS} kg, k = {FREE_STIFFNESS:g} N/m, released at {FREE_START * 1e6:g} µm"
+    ]
     if run.overflow is None:
         lines.append(f"  no overflow within {run.t[-1]:g} s ({run.reversals} reversals)")
     else:
