@@ -147,7 +147,7 @@ def bench_step(config: Config) -> dict[str, float]:
     empty: list[float] = []
     for chunk in chunks[: min(len(chunks), 200)]:
         start = clock()
-        for v in chunk:
+        for _v in chunk:
             pass
         empty.append((clock() - start) / batch)
     per_call.sort()

@@ -19,7 +19,9 @@ from leuven_rt.discrepancy import CATALOGUE
 from leuven_rt.discrepancy.hidden import make_hidden
 
 BASE = ("coulomb", "viscous")
-CASES = [(), *[(name,) for name in CATALOGUE if name not in BASE]] + [
+CASES = [
+    (),
+    *[(name,) for name in CATALOGUE if name not in BASE],
     ("inertia", "offset"),
     ("presliding_hysteresis", "position_dependence"),
     ("stribeck", "inertia"),
@@ -44,8 +46,8 @@ def main() -> None:
                 diagnosis = lr.diagnose(data, BASE)
                 exact += sorted(diagnosis.named_effects) == sorted(hidden)
                 ratios.append(diagnosis.rms_after / diagnosis.noise_std)
-            print(f"| {' + '.join(hidden) or 'none (null case)'} | {resolution * 1e9:g} nm | {exact}/{len(seeds)} | "
-                  f"{min(ratios):.2f}-{max(ratios):.2f} |", flush=True)  # fmt: skip
+            print(f"| {' + '.join(hidden) or 'none (null case)'} | {resolution * 1e9:g} nm | "
+                  f"{exact}/{len(seeds)} | {min(ratios):.2f}-{max(ratios):.2f} |", flush=True)  # fmt: skip
 
 
 if __name__ == "__main__":

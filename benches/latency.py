@@ -138,8 +138,8 @@ def main() -> None:
         )
         print(
             f"| {row['language']} | {row['mode']} | {row['steps']:,} | {row['median_ns']:.0f} ns | "
-            f"{row['p999_ns']:.0f} ns | {float(row['max_ns']) / 1e3:.1f} µs | {row['batched_median_ns']:.1f} ns | "
-            f"{row['clock_overhead_ns']:.0f} ns | {evaluations} |"
+            f"{row['p999_ns']:.0f} ns | {float(row['max_ns']) / 1e3:.1f} µs | "
+            f"{row['batched_median_ns']:.1f} ns | {row['clock_overhead_ns']:.0f} ns | {evaluations} |"
         )
     print()
     for row in rows:

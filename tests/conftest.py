@@ -71,7 +71,7 @@ def velocity_signals(draw: st.DrawFn, samples: int, scale: float) -> np.ndarray:
     count = draw(st.integers(1, 6))
     cuts = sorted(draw(st.lists(st.integers(1, samples - 1), min_size=count - 1, max_size=count - 1)))
     pieces: list[np.ndarray] = []
-    for start, stop in zip([0, *cuts], [*cuts, samples]):
+    for start, stop in zip([0, *cuts], [*cuts, samples], strict=True):
         length = stop - start
         kind = draw(st.sampled_from(["sine", "plateau", "zeros", "flip"]))
         if kind == "sine":
@@ -126,7 +126,7 @@ def state_arrays(state: Any) -> tuple[np.ndarray, ...]:
 def assert_same_state(before: Any, after: Any) -> None:
     """Both checkpoints hold bit-identical arrays."""
     for name, x, y in zip(("z", "zeta", "last_position", "has_last_position"), state_arrays(before),
-                          state_arrays(after)):  # fmt: skip
+                          state_arrays(after), strict=True):  # fmt: skip
         assert x.shape == y.shape, name
         np.testing.assert_array_equal(x, y, err_msg=name, strict=True)
 

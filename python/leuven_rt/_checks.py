@@ -69,7 +69,8 @@ def as_channels(values: ArrayLike, name: str, channels: int) -> FloatArray:
     if shape is not None and shape != (channels,):
         raise InputError(f"`{name}` must have shape ({channels},), got shape {shape}")
     array, _ = as_signal(values, name)
-    return array[0]
+    row: FloatArray = array[0]
+    return row
 
 
 def check_dt(dt: Any) -> float:
@@ -90,9 +91,10 @@ def check_channels(channels: Any) -> int:
     """A channel count: an integer (not a bool) from 1 to ``sys.maxsize``."""
     if isinstance(channels, bool) or not isinstance(channels, numbers.Integral):
         raise InputError(f"`channels` must be an integer >= 1, got {channels!r}")
-    if not 1 <= channels <= sys.maxsize:
+    count = int(channels)  # exact for any Integral
+    if not 1 <= count <= sys.maxsize:
         raise InputError(f"`channels` must be an integer from 1 to {sys.maxsize}, got {channels}")
-    return int(channels)
+    return count
 
 
 def check_scheme(scheme: Any) -> str:
@@ -124,7 +126,7 @@ def as_log(x: ArrayLike, v: ArrayLike, f: ArrayLike | None) -> list[FloatArray]:
             raise InputError(f"`{name}` must have shape (T,), got shape {np.shape(values)}")
         arrays.append(array[0])
     length = arrays[0].shape[0]
-    for (name, _), array in zip(named[1:], arrays[1:]):
+    for (name, _), array in zip(named[1:], arrays[1:], strict=True):
         if array.shape[0] != length:
             raise InputError(f"`{name}` must have the length of `x`, {length}, got {array.shape[0]}")
     return arrays

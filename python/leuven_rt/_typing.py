@@ -16,10 +16,12 @@ if TYPE_CHECKING:
 
 #: A float64 array of any shape: signals (T,) or (B, T), regressor matrices, states.
 FloatArray = NDArray[np.float64]
+#: A boolean mask over samples (T,), e.g. the rows a fit uses.
+BoolArray = NDArray[np.bool_]
 #: A parameter set: a :class:`leuven_rt.Params`, or a mapping with its keys.
 ParamsLike = Union["Params", Mapping[str, Any]]
 #: A log: a :class:`leuven_rt.MotionData`, a path to a ``.csv`` or EMPS ``.mat`` file, or a
 #: mapping of the columns ``t``, ``x``, ``f`` (and optionally ``v``).
 DataLike = Union["MotionData", str, "PathLike[str]", Mapping[str, ArrayLike]]
 
-__all__ = ["DataLike", "FloatArray", "ParamsLike"]
+__all__ = ["BoolArray", "DataLike", "FloatArray", "ParamsLike"]

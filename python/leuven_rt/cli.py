@@ -90,13 +90,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
         "demo",
-        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; write figures",
+        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; "
+        "write figures",
     )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.set_defaults(run=_demo)
     accuracy = commands.add_parser(
         "accuracy",
-        help="RMS error of explicit and implicit steps against a 100x finer solution, velocity- and force-driven",
+        help="RMS error of explicit and implicit steps against a 100x finer solution, "
+        "velocity- and force-driven",
     )
     accuracy.set_defaults(run=_accuracy)
     figures = commands.add_parser(

@@ -10,6 +10,8 @@ force carries over (see crates/gms-core/src/compensator.rs).
 
 from __future__ import annotations
 
+from typing import cast
+
 from . import _core
 from ._checks import check_dt
 from ._typing import ParamsLike
@@ -31,7 +33,9 @@ class Compensator(_core.CompensatorEngine):
     def __new__(cls, params: ParamsLike, dt: float, mode: str = "feedforward") -> Compensator:
         if mode not in MODES:
             raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
-        return super().__new__(cls, as_params(params), check_dt(dt), str(mode))
+        # _core.pyi types CompensatorEngine.__new__ as returning CompensatorEngine, not Self.
+        engine = super().__new__(cls, as_params(params), check_dt(dt), str(mode))
+        return cast("Compensator", engine)
 
     def set_params(self, params: ParamsLike) -> None:
         """Swaps in new parameters between two samples; the hysteresis force carries over."""

@@ -15,6 +15,7 @@ is the same discrete step in numpy.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -69,7 +70,8 @@ class MassSystem(_core.MassEngine):
         channels: int = 1,
         scheme: str = "implicit",
     ) -> MassSystem:
-        return super().__new__(
+        # _core.pyi types MassEngine.__new__ as returning MassEngine, not Self.
+        engine = super().__new__(
             cls,
             as_params(params),
             mass,
@@ -78,6 +80,7 @@ class MassSystem(_core.MassEngine):
             check_channels(channels),
             check_scheme(scheme),
         )
+        return cast("MassSystem", engine)
 
     def __repr__(self) -> str:
         return (

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -48,7 +49,9 @@ class LeuvenModel(_core.Engine):
     """
 
     def __new__(cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit") -> LeuvenModel:
-        return super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
+        # _core.pyi types Engine.__new__ as returning Engine, not Self.
+        engine = super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
+        return cast("LeuvenModel", engine)
 
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"

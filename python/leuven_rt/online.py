@@ -18,7 +18,7 @@ leave undetermined, and ``max_trace`` stops its wind-up under forgetting.
 from __future__ import annotations
 
 import numbers
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -78,7 +78,9 @@ class OnlineIdentifier(_core.OnlineIdentifier):
             raise ParameterError(f"`initial` must be finite, got {start}")
         covariance = _real("initial_covariance", initial_covariance)
         bound = 1e3 * parameters * covariance if max_trace is None else _real("max_trace", max_trace)
-        return super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
+        # _core.pyi types OnlineIdentifier.__new__ as returning OnlineIdentifier, not Self.
+        engine = super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
+        return cast("OnlineIdentifier", engine)
 
     def __repr__(self) -> str:
         return f"OnlineIdentifier(elements={self.elements}, estimate={self.estimate_dict()!r})"

@@ -29,10 +29,8 @@ def _real(key: str, value: Any) -> float:
 
 
 def _reals(key: str, values: Any) -> tuple[float, ...]:
-    if (
-        isinstance(values, (str, bytes))
-        or (not isinstance(values, (Sequence,))
-        and not hasattr(values, "__array__"))
+    if isinstance(values, (str, bytes)) or (
+        not isinstance(values, (Sequence,)) and not hasattr(values, "__array__")
     ):
         raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r}")
     items = list(values.tolist() if hasattr(values, "tolist") else values)
@@ -46,7 +44,9 @@ class Params:
     """Modified Leuven model parameters (SI units).
 
     Give the hysteresis either as Maxwell-slip elements (``W`` and ``Delta``, same length, at
-    most ``MAX_ELEMENTS``) or as a linear spring ``sigma0`` (LuGre when ``n = 1``).
+    most ``MAX_ELEMENTS``) or as a linear spring ``sigma0`` (LuGre when ``n = 1``). ``W`` and
+    ``Delta`` may be given as lists or tuples of real numbers (1-D arrays are accepted too); they
+    are stored as tuples of floats.
     ``Fc_neg``/``Fs_neg`` default to ``Fc``/``Fs``. Raises :class:`ParameterError` naming the
     key and showing what was expected and what came.
     """
@@ -58,8 +58,10 @@ class Params:
     n: float
     sigma1: float = 0.0
     sigma2: float = 0.0
-    W: tuple[float, ...] | None = None
-    Delta: tuple[float, ...] | None = None
+    W: Sequence[float] | None = None
+    """Maxwell-slip element weights [N]; stored as a tuple of floats."""
+    Delta: Sequence[float] | None = None
+    """Maxwell-slip break deflections [m]; stored as a tuple of floats."""
     Fc_neg: float | None = None
     Fs_neg: float | None = None
     sigma0: float | None = None

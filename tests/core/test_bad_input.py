@@ -223,7 +223,10 @@ def test_position_differences_that_overflow_are_reported() -> None:
     x = np.array([0.0, 1e308, -1e308, 0.0])
     for simulate in (leuven_rt.simulate_position, reference.simulate_position):
         rejects(
-            None, lambda: simulate(MAXWELL, x, DT), InputError, r"`v` must be finite, got inf at sample 1$"
+            None,
+            lambda simulate=simulate: simulate(MAXWELL, x, DT),
+            InputError,
+            r"`v` must be finite, got inf at sample 1$",
         )
     with pytest.raises(InputError, match=r"`v` must be finite, got inf at sample 1$"):
         LeuvenModel(MAXWELL).run_position(x, DT)
@@ -293,9 +296,10 @@ def _replace(state: ModelState, **changes: Any) -> ModelState:
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        pytest.param(lambda s: _replace(s, z=s.z[:1]), r"`state.z` must have shape \(2,\), got shape \(1,\)", id="z"),
-        pytest.param(lambda s: _replace(s, z=s.z[:, None]), r"`state.z` must have shape \(2,\), got shape \(2, 1\)",
-                     id="z-2d"),
+        pytest.param(lambda s: _replace(s, z=s.z[:1]),
+                     r"`state.z` must have shape \(2,\), got shape \(1,\)", id="z"),
+        pytest.param(lambda s: _replace(s, z=s.z[:, None]),
+                     r"`state.z` must have shape \(2,\), got shape \(2, 1\)", id="z-2d"),
         pytest.param(lambda s: _replace(s, zeta=s.zeta[:, :3]),
                      r"`state.zeta` must have shape \(2, 4\), got shape \(2, 3\)", id="zeta"),
         pytest.param(lambda s: _replace(s, zeta=s.zeta.ravel()),
@@ -304,7 +308,8 @@ def _replace(state: ModelState, **changes: Any) -> ModelState:
                      r"`state.last_position` must have shape \(2,\), got shape \(3,\)", id="last"),
         pytest.param(lambda s: _replace(s, has_last_position=np.ones((2, 2), bool)),
                      r"`state.has_last_position` must have shape \(2,\), got shape \(2, 2\)", id="has_last"),
-        pytest.param(lambda s: _replace(s, z=np.array([0.0, np.nan])), r"`state.z` must be finite", id="z-nan"),
+        pytest.param(lambda s: _replace(s, z=np.array([0.0, np.nan])), r"`state.z` must be finite",
+                     id="z-nan"),
         pytest.param(lambda s: _replace(s, zeta=np.full((2, 4), np.inf)), r"`state.zeta` must be finite",
                      id="zeta-inf"),
         pytest.param(lambda s: (s.z, s.zeta, s.last_position, s.has_last_position),

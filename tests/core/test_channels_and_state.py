@@ -63,11 +63,11 @@ def test_batch_equals_separate_runs(p: dict[str, Any], data: st.DataObject, sche
         v = explicit_safe(v, p)
     batch = leuven_rt.simulate(p, v, DT, scheme)
     assert batch.shape == v.shape
-    for row, out in zip(v, batch):
+    for row, out in zip(v, batch, strict=True):
         np.testing.assert_array_equal(out, leuven_rt.simulate(p, row, DT, scheme))
     x = positions(v)
     batch_x = leuven_rt.simulate_position(p, x, DT, scheme)
-    for row, out in zip(x, batch_x):
+    for row, out in zip(x, batch_x, strict=True):
         np.testing.assert_array_equal(out, leuven_rt.simulate_position(p, row, DT, scheme))
 
 
@@ -103,7 +103,7 @@ def test_run_in_chunks_equals_one_run(p: dict[str, Any], data: st.DataObject) ->
     v = signal_rows(data, rows)
     cuts = sorted(data.draw(st.lists(st.integers(0, v.shape[1]), max_size=6), label="cuts"))
     model = LeuvenModel(p, channels=rows)
-    chunks = [model.run(v[:, a:b], DT) for a, b in zip([0, *cuts], [*cuts, v.shape[1]])]
+    chunks = [model.run(v[:, a:b], DT) for a, b in zip([0, *cuts], [*cuts, v.shape[1]], strict=True)]
     whole_model = LeuvenModel(p, channels=rows)
     whole = whole_model.run(v, DT)
     np.testing.assert_array_equal(np.concatenate(chunks, axis=1), whole)
@@ -121,7 +121,7 @@ def test_run_position_in_chunks_continues_the_position(p: dict[str, Any], data: 
     x = positions(v)
     cuts = sorted(data.draw(st.lists(st.integers(1, x.size - 1), min_size=1, max_size=5), label="cuts"))
     model = LeuvenModel(p)
-    chunks = [model.run_position(x[a:b], DT) for a, b in zip([0, *cuts], [*cuts, x.size])]
+    chunks = [model.run_position(x[a:b], DT) for a, b in zip([0, *cuts], [*cuts, x.size], strict=True)]
     np.testing.assert_array_equal(np.concatenate(chunks), leuven_rt.simulate_position(p, x, DT))
     assert model.state.has_last_position.tolist() == [True]
     assert model.state.last_position.tolist() == [x[-1]]

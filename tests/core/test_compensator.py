@@ -162,7 +162,8 @@ def test_new_parameters_must_have_the_same_kind_and_size() -> None:
     compensator = busy()
     smaller = dict(MAXWELL, W=[1.0, 1.0], Delta=[1e-6, 2e-6])
     rejects(compensator, lambda: compensator.set_params(smaller), ParameterError,
-            r"must have 4 Maxwell-slip elements like the compensator's, got 2 Maxwell-slip elements")  # fmt: skip
+            r"must have 4 Maxwell-slip elements like the compensator's, "
+            r"got 2 Maxwell-slip elements")  # fmt: skip
     rejects(compensator, lambda: compensator.set_params(LUGRE), ParameterError,
             r"must have 4 Maxwell-slip elements like the compensator's, got linear hysteresis")  # fmt: skip
     lugre = busy("observer", LUGRE)

@@ -21,16 +21,18 @@ down (error against F(t_k) is ~2.3 × smaller than against F(t_{k+1})); it is wh
 using this step as a feedforward sees, and it vanishes at first order as dt → 0.
 
 Tolerance. With first-order error the RMS force error is C·dt; at dt = 1e-5 s it is 2.0e-4 N
-(0.013 % of Fs) for the implicit scheme, and the bound asserted is 5e-4 N (2.5 × the observed value; the Radau solution is
-~3e-11 N accurate, checked once against rtol 1e-12, so it contributes nothing). The convergence check is what shows the step is right
-rather than merely close: halving dt from 2e-5 to 1e-5 to 5e-6 s must divide the RMS error by
-2 ± 0.2 each time (observed 2.00). A wrong g, n, or a mis-scaled σ0, σ1 or σ2 term would leave an
-error floor that does not shrink with dt, and the ratio would collapse towards 1.
+(0.013 % of Fs) for the implicit scheme, and the bound asserted is 5e-4 N (2.5 × the observed
+value; the Radau solution is ~3e-11 N accurate, checked once against rtol 1e-12, so it contributes
+nothing). The convergence check is what shows the step is right rather than merely close:
+halving dt from 2e-5 to 1e-5 to 5e-6 s must divide the RMS error by 2 ± 0.2 each time (observed
+2.00). A wrong g, n, or a mis-scaled σ0, σ1 or σ2 term would leave an error floor that does not
+shrink with dt, and the ratio would collapse towards 1.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -106,7 +108,7 @@ def test_the_velocity_reverses_and_slides() -> None:
 def test_implicit_step_converges_to_the_ode_at_first_order(name: str, ode_force: NDArray[np.float64]) -> None:
     errors = [rms_error(IMPLEMENTATIONS[name], ode_force, dt, "implicit") for dt in STEPS]
     assert errors[1] < RMS_BOUND_AT_1E5
-    for coarse, fine in zip(errors, errors[1:]):
+    for coarse, fine in pairwise(errors):
         assert coarse / fine == pytest.approx(2.0, abs=0.2)
 
 

@@ -156,8 +156,11 @@ def test_rust_regressors_match_the_numpy_definition(delta: list[float], steps: l
         (dict(Delta=[1e-6], forgetting=0.0), r"`forgetting` must be in \(0, 1\], got 0.0"),
         (dict(Delta=[1e-6], forgetting=1.5), r"`forgetting` must be in \(0, 1\], got 1.5"),
         (dict(Delta=[1e-6], forgetting=True), r"`forgetting` must be a real number, got True"),
-        (dict(Delta=[1e-6], initial_covariance=-1.0), r"`initial_covariance` must be finite and > 0, got -1.0"),
-        (dict(Delta=[1e-6], initial_covariance=1.0, max_trace=3.0), r"`max_trace` must be >= the trace of the initial covariance, 4 × initial_covariance = 4.0, got 3.0"),
+        (dict(Delta=[1e-6], initial_covariance=-1.0),
+         r"`initial_covariance` must be finite and > 0, got -1.0"),
+        (dict(Delta=[1e-6], initial_covariance=1.0, max_trace=3.0),
+         r"`max_trace` must be >= the trace of the initial covariance, "
+         r"4 × initial_covariance = 4.0, got 3.0"),
         (dict(Delta=[1e-6], initial=[0.0, 0.0]), r"`initial` must have 4 values, got 2"),
         (dict(Delta=[1e-6], initial=[0.0, 0.0, float("inf"), 0.0]), r"`initial` must be finite"),
     ],
@@ -202,7 +205,8 @@ def test_bad_samples_raise_an_input_error_and_change_nothing(args: tuple[Any, ..
 @pytest.mark.parametrize(
     ("log", "match"),
     [
-        (([0.0, 1e-6, 2e-6], [0.0, 1e-3, np.nan], [0.0, 0.1, 0.2]), r"`v` must be finite, got nan at sample 2"),
+        (([0.0, 1e-6, 2e-6], [0.0, 1e-3, np.nan], [0.0, 0.1, 0.2]),
+         r"`v` must be finite, got nan at sample 2"),
         (([0.0, 1e-6, 2e-6], [0.0, 1e-3], [0.0, 0.1, 0.2]), r"`v` must have the length of `x`, 3, got 2"),
         (([0.0, 1e-6], [0.0, 1e-3], [[0.0, 0.1]]), r"`f` must have shape \(T,\), got shape \(1, 2\)"),
         (([0.0, 1e-6], [0.0, 1e-3], ["a", "b"]), r"`f` must be castable to float64"),

@@ -69,8 +69,8 @@ def test_save_and_load(tmp_path: Path, model: dict[str, Any]) -> None:
 
 
 def test_a_hand_written_file_loads(tmp_path: Path) -> None:
-    """A parameter file written by hand with the keys of docs/parameters.md#keys (ints where floats are meant, no
-    sigma1/sigma2) loads, with floats and defaults filled in."""
+    """A parameter file written by hand with the keys of docs/parameters.md#keys (ints where floats
+    are meant, no sigma1/sigma2) loads, with floats and defaults filled in."""
     path = tmp_path / "hand.json"
     path.write_text(
         '{"Fc": 1, "Fs": 2, "Vs": 0.001, "delta": 2, "n": 1,\n "W": [1, 2], "Delta": [1e-6, 2e-6]}'

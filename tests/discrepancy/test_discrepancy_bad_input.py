@@ -39,7 +39,7 @@ def test_file_of_another_kind_is_refused(tmp_path: Path) -> None:
         lr.diagnose(path)
     fake = tmp_path / "log.mat"
     fake.write_bytes(b"not a MATLAB file")
-    with pytest.raises(lr.InputError, match="cannot read .* as a MATLAB .mat file"):
+    with pytest.raises(lr.InputError, match=r"cannot read .* as a MATLAB \.mat file"):
         lr.diagnose(fake)
 
 

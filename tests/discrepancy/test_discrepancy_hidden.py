@@ -25,14 +25,16 @@ from leuven_rt.discrepancy.hidden import make_hidden
 DT = 8e-4
 BASE = ("coulomb", "viscous")
 
-SINGLE = [(BASE, ("viscous",)), (BASE, ("coulomb",))] + [
-    (BASE + (effect,), BASE) for effect in CATALOGUE if effect not in BASE
+SINGLE = [
+    (BASE, ("viscous",)),
+    (BASE, ("coulomb",)),
+    *[((*BASE, effect), BASE) for effect in CATALOGUE if effect not in BASE],
 ]
 PAIRS = [
-    (BASE + ("inertia", "offset"), BASE),
-    (BASE + ("presliding_hysteresis", "position_dependence"), BASE),
-    (BASE + ("stribeck", "inertia"), BASE),
-    (BASE + ("stribeck", "asymmetry"), BASE),
+    ((*BASE, "inertia", "offset"), BASE),
+    ((*BASE, "presliding_hysteresis", "position_dependence"), BASE),
+    ((*BASE, "stribeck", "inertia"), BASE),
+    ((*BASE, "stribeck", "asymmetry"), BASE),
 ]
 #: An encoder that resolves the turns (see the module doc).
 FINE = 1e-10
@@ -60,7 +62,7 @@ def test_presliding_reports_the_state_equation_exponent() -> None:
     # The generator's elements follow the modified Leuven state equation with n = 2: the bank
     # driven by z (not x) is what brings the final rms to the noise floor.
     diagnosis = lr.diagnose(
-        make_hidden(BASE + ("presliding_hysteresis",), dt=DT, quantization=FINE).data, BASE
+        make_hidden((*BASE, "presliding_hysteresis"), dt=DT, quantization=FINE).data, BASE
     )
     (step,) = diagnosis.steps
     assert step.effect == "presliding_hysteresis" and step.params["n"] == 2.0
@@ -84,7 +86,7 @@ def test_drift_outside_the_catalogue_names_nothing_wrong_and_stays_unexplained()
 
 
 def test_report_follows_design_section_4() -> None:
-    diagnosis = lr.diagnose(make_hidden(BASE + ("inertia",), dt=DT).data, "coulomb,viscous")
+    diagnosis = lr.diagnose(make_hidden((*BASE, "inertia"), dt=DT).data, "coulomb,viscous")
     report = json.loads(diagnosis.to_json())
     assert list(report) == ["samples", "noise_std", "baseline", "rms_before", "rms_after", "named_effects",
                             "steps", "unexplained", "final_model"]  # fmt: skip
@@ -99,5 +101,5 @@ def test_report_follows_design_section_4() -> None:
     assert not step["where"].startswith("everywhere")  # localised, with its numbers
     assert "rms" in step["where"]
     assert set(report["unexplained"]) == {"significant", "where"}
-    assert report["final_model"]["effects"] == list(BASE) + ["inertia"]
+    assert report["final_model"]["effects"] == [*BASE, "inertia"]
     assert np.isfinite(report["noise_std"]) and report["noise_std"] > 0

@@ -156,8 +156,8 @@ def test_command_line_writes_the_same_parameters(tmp_path: Path, capsys: pytest.
     np.savetxt(csv, np.column_stack((data.t, data.x, data.f)), delimiter=",", header="t,x,f", comments="",
                fmt="%.17g")  # fmt: skip
     out, report = tmp_path / "params.json", tmp_path / "report.json"
-    argv = ["identify", str(csv), "-o", str(out), "--report", str(report), "--elements", "3", "--held-out", "0",
-            "--quiet"]  # fmt: skip
+    argv = ["identify", str(csv), "-o", str(out), "--report", str(report), "--elements", "3",
+            "--held-out", "0", "--quiet"]  # fmt: skip
     assert leuven_rt.cli.main(argv) == 0
     captured = capsys.readouterr()
     assert captured.out == ""

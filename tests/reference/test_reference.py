@@ -1,4 +1,5 @@
-"""The numpy reference (`leuven_rt.reference`) on its own: the properties docs/model.md#discrete-step promises.
+"""The numpy reference (`leuven_rt.reference`) on its own: the properties
+docs/model.md#discrete-step promises.
 
 No comparison with the Rust core here; that lives in its own test file.
 """

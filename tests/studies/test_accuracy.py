@@ -1,10 +1,11 @@
-"""The explicit-vs-implicit accuracy claim of docs/model.md#accuracy-of-the-schemes, measured by leuven_rt.studies.accuracy.
+"""The explicit-vs-implicit accuracy claim of docs/model.md#accuracy-of-the-schemes, measured by
+leuven_rt.studies.accuracy.
 
-What is asserted is what holds for the scenario of docs/model.md#accuracy-of-the-schemes (σ0 = 1e5 N/m, 10 mm/s at 5 Hz):
-the implicit step is accurate at 1 kHz and converges as the rate grows, and the explicit step
-blows up where its stability number dt·|v|·σ0/g(v) exceeds 2. At 1 kHz that number peaks at
-exactly 1, so forward Euler is stable there and about as accurate as backward Euler; a
-"10× better at 1 kHz" assertion would fail on a correct implementation and is not made.
+What is asserted is what holds for the scenario of docs/model.md#accuracy-of-the-schemes
+(σ0 = 1e5 N/m, 10 mm/s at 5 Hz): the implicit step is accurate at 1 kHz and converges as the rate
+grows, and the explicit step blows up where its stability number dt·|v|·σ0/g(v) exceeds 2. At
+1 kHz that number peaks at exactly 1, so forward Euler is stable there and about as accurate as
+backward Euler; a "10× better at 1 kHz" assertion would fail on a correct implementation and is not made.
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
 """The force-driven accuracy case (leuven_rt.studies.accuracy.force_accuracy): a mass on the LuGre-like
-friction of docs/model.md#accuracy-of-the-schemes, pushed by a 2 N, 5 Hz sine, against the implicit step 100× finer.
+friction of docs/model.md#accuracy-of-the-schemes, pushed by a 2 N, 5 Hz sine, against the implicit
+step 100× finer.
 
 Measured (1 s, refine 100): implicit 21.3 %, 4.73 %, 0.481 % of Fs at 100 Hz, 1 kHz, 10 kHz;
 explicit diverges at 100 Hz and 1 kHz (its friction step's stability number dt·|v|·σ0/Fc reaches

@@ -30,6 +30,7 @@ def test_emps_names_inertia_and_asymmetry_and_beats_the_published_error() -> Non
     assert estimation < PUBLISHED
     validation = relative_error_on(final, features, EMPS / "DATA_EMPS_PULSES.mat")
     validation_baseline = relative_error_on(baseline, features, EMPS / "DATA_EMPS_PULSES.mat")
-    print(f"EMPS relative error: estimation {estimation:.2f} % (baseline {relative_error(baseline, features):.2f} %), "
+    print(f"EMPS relative error: estimation {estimation:.2f} % "
+          f"(baseline {relative_error(baseline, features):.2f} %), "
           f"validation {validation:.2f} % (baseline {validation_baseline:.2f} %)")  # fmt: skip
     assert validation < validation_baseline

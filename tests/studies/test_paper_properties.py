@@ -7,6 +7,8 @@ the Rust core; the numbers in the comments were measured with it.
 
 from __future__ import annotations
 
+from itertools import pairwise
+
 import numpy as np
 
 import leuven_rt as lr
@@ -118,7 +120,7 @@ def test_presliding_hysteresis_with_nonlocal_memory() -> None:
     # out is exact (crates/gms-core/tests/wiping_out.rs).
     def path(points: list[float]) -> np.ndarray:
         scaled = [1e-6 * value for value in points]
-        parts = [np.linspace(a, b, 400, endpoint=False) for a, b in zip(scaled[:-1], scaled[1:])]
+        parts = [np.linspace(a, b, 400, endpoint=False) for a, b in pairwise(scaled)]
         return np.concatenate([*parts, [scaled[-1]]])
 
     x1, x2 = path([0.0, 1.0, -0.5, 0.6]), path([0.0, 1.0, -0.5, 0.3, -0.1, 0.6])

@@ -1,5 +1,5 @@
-"""Measured motion data: loading (CSV of docs/data-and-reports.md#measured-data, EMPS .mat files), validation, resampling
-and the zero-phase derivative estimates that every fit works from.
+"""Measured motion data: loading (CSV of docs/data-and-reports.md#measured-data, EMPS .mat files),
+validation, resampling and the zero-phase derivative estimates that every fit works from.
 
 Bad data is refused once, here, with a :class:`DataError` naming the column; the fitting modules
 can then assume uniformly sampled, finite, increasing, plausibly scaled signals.
@@ -17,11 +17,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import scipy.io
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from .._typing import DataLike, FloatArray
 from ..errors import DataError, ResamplingWarning
@@ -195,10 +195,12 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
         table = np.genfromtxt(path, delimiter=",", names=True, dtype=np.float64, encoding="utf-8")
     except (OSError, ValueError) as error:
         raise DataError(f"cannot read {path} as CSV with a header line `t,x,f[,v]`: {error}") from None
-    if table.dtype.names is None:
+    names = table.dtype.names
+    if names is None:
         raise DataError(f"{path} must start with a header line naming the columns, e.g. `t,x,f`")
-    table = np.atleast_1d(table)
-    return {name: np.asarray(table[name], dtype=np.float64) for name in table.dtype.names}
+    # With names=True the table is a structured array (one field per column), not float64 as typed.
+    records = cast("NDArray[np.void]", np.atleast_1d(table))
+    return {name: np.asarray(records[name], dtype=np.float64) for name in names}
 
 
 def load_emps(path: Path) -> dict[str, FloatArray]:
@@ -211,7 +213,8 @@ def load_emps(path: Path) -> dict[str, FloatArray]:
     missing = [name for name in ("t", "qm", "vir", "gtau") if name not in content]
     if missing:
         raise DataError(
-            f"{path} lacks the EMPS variables {missing}: expected `t`, `qm`, `vir`, `gtau` (f = gtau·vir, x = qm)"
+            f"{path} lacks the EMPS variables {missing}: "
+            "expected `t`, `qm`, `vir`, `gtau` (f = gtau·vir, x = qm)"
         )
     gtau = np.asarray(content["gtau"], dtype=np.float64).ravel()
     if gtau.size != 1:
@@ -239,6 +242,7 @@ def as_motion_data(data: DataLike) -> MotionData:
     stamps with a :class:`ResamplingWarning`."""
     if isinstance(data, MotionData):
         return data
+    columns: Mapping[str, ArrayLike]
     if isinstance(data, (str, PathLike)):
         columns, source = load_columns(data), str(data)
     elif isinstance(data, Mapping):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -79,13 +80,14 @@ def fit_linear(
     # for A = QR, so the solution, the singular values and the covariance are those of A. One
     # Householder QR of [A y] gives both R and Qᵀy without forming Q.
     columns = len(names)
-    augmented = np.linalg.qr(np.column_stack((matrix, target)), mode="r")
+    # mode="r" returns R alone; numpy's stubs type every mode as the (Q, R) result.
+    augmented = cast(FloatArray, np.linalg.qr(np.column_stack((matrix, target)), mode="r"))
     r, projected = augmented[:columns, :columns], augmented[:columns, columns]
     if bounded:
         lower = np.array([0.0 if name in bounded else -np.inf for name in names])
         theta = lsq_linear(r, projected, bounds=(lower, np.inf), method="bvls").x
     else:
-        theta = np.linalg.lstsq(r, projected, rcond=None)[0]
+        theta = np.asarray(np.linalg.lstsq(r, projected, rcond=None)[0], dtype=np.float64)
     prediction = matrix @ theta
     residual = target - prediction
     singular = np.linalg.svd(r, compute_uv=False)
@@ -99,10 +101,10 @@ def fit_linear(
         errors = np.full(len(names), np.inf)
     r = np.abs(np.diag(r))
     return LinearFit(
-        coefficients={name: float(value) for name, value in zip(names, theta)},
+        coefficients={name: float(value) for name, value in zip(names, theta, strict=True)},
         prediction=prediction,
         residual=residual,
         condition=condition,
-        r_diagonal={name: float(value) for name, value in zip(names, r)},
-        standard_errors={name: float(value) for name, value in zip(names, errors)},
+        r_diagonal={name: float(value) for name, value in zip(names, r, strict=True)},
+        standard_errors={name: float(value) for name, value in zip(names, errors, strict=True)},
     )

@@ -20,7 +20,9 @@ def standard_params(elements: int = 10) -> Params:
     delta = 1e-5 * index / elements
     weights = (elements + 1 - index).astype(float)
     w = 2.0 * weights / weights.sum()
-    return Params(Fc=1.0, Fs=1.5, Vs=1e-3, delta=2.0, n=2.0, sigma1=30.0, sigma2=0.4, W=w, Delta=delta)
+    return Params(
+        Fc=1.0, Fs=1.5, Vs=1e-3, delta=2.0, n=2.0, sigma1=30.0, sigma2=0.4, W=w.tolist(), Delta=delta.tolist()
+    )
 
 
 @dataclass(frozen=True)
@@ -39,6 +41,6 @@ def presliding_to_sliding(duration: float = 6.0, dt: float = 1e-4) -> Excitation
     The first cycles stay inside the presliding range (closed hysteresis loops in force vs
     displacement); the last ones slide, and the force saturates at the Stribeck level.
     """
-    t = np.arange(int(round(duration / dt))) * dt
+    t = np.arange(round(duration / dt), dtype=np.float64) * dt
     amplitude = 1e-7 * (2e-4 / 1e-7) ** (t / duration)
     return Excitation(t=t, x=amplitude * np.sin(2.0 * np.pi * t), amplitude=amplitude, dt=dt)

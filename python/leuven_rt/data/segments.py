@@ -8,6 +8,7 @@ displacement, so this module finds the reversals and estimates the presliding ra
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import NDArray
@@ -58,7 +59,7 @@ def find_segments(x: FloatArray, x_filtered: FloatArray) -> Segments:
     ends = np.append(starts[1:], x.size - 1)
     travel = np.empty_like(x_filtered)
     direction = np.empty_like(x_filtered)
-    for start, end in zip(starts, ends):
+    for start, end in zip(starts, ends, strict=True):
         stop = x.size if end == x.size - 1 else end
         piece = x_filtered[start:stop] - x_filtered[start]
         travel[start:stop] = np.abs(piece)
@@ -76,7 +77,7 @@ def transition_lengths(
     the others when ``from_start``."""
     lengths = []
     bounds = np.append(segments.starts, force.size)
-    pairs = zip(bounds[:1], bounds[1:2]) if from_start else zip(bounds[1:-1], bounds[2:])
+    pairs = pairwise(bounds[:2]) if from_start else pairwise(bounds[1:])
     for start, stop in pairs:
         travel = segments.travel[start:stop]
         total = float(travel[-1]) if travel.size else 0.0

@@ -66,4 +66,5 @@ def noise_floor(force: FloatArray) -> float:
     (robust: 1.4826·MAD of the differences / √2, so that steps at reversals do not count)."""
     differences = np.diff(force)
     spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
-    return spread / np.sqrt(2.0)
+    noise: float = spread / np.sqrt(2.0)
+    return noise

@@ -43,15 +43,15 @@ def _smooth_step(samples: int) -> FloatArray:
 
 def _sine_cycles(amplitude: float, frequency: float, cycles: int, dt: float) -> FloatArray:
     """Displacement of whole cycles of 1 − cos (starts and ends at rest, at zero displacement)."""
-    t = np.arange(1, int(round(cycles / (frequency * dt))) + 1) * dt
+    t = np.arange(1, round(cycles / (frequency * dt)) + 1, dtype=np.float64) * dt
     return 0.5 * amplitude * (1.0 - np.cos(2.0 * np.pi * frequency * t))
 
 
 def _plateau(speed: float, hold: float, ramp: float, dt: float) -> FloatArray:
     """Displacement of a move: velocity ramps smoothly from 0 to ``speed``, holds, ramps back."""
-    ramp_samples = max(int(round(ramp / dt)), 2)
+    ramp_samples = max(round(ramp / dt), 2)
     up = _smooth_step(ramp_samples)
-    v = np.concatenate((up, np.ones(int(round(hold / dt))), up[::-1])) * speed
+    v = np.concatenate((up, np.ones(round(hold / dt)), up[::-1])) * speed
     return np.cumsum(v) * dt
 
 
@@ -70,17 +70,20 @@ def excitation(
     - plateaus: constant-velocity moves at ``speeds`` (default: 0.3 to 100 Stribeck velocities,
       in a random order), each forward then back, long enough to reach steady sliding.
     """
-    pieces: list[FloatArray] = [np.zeros(int(round(0.02 / dt)))]
+    pieces: list[FloatArray] = [np.zeros(round(0.02 / dt))]
     amplitudes = presliding_range * np.array([0.1, 0.3, 0.6, 1.0, 2.0, 3.0, 1.5, 0.5, 0.2])
     amplitudes *= rng.uniform(0.8, 1.2, amplitudes.size)
-    for sign, amplitude in zip(np.resize([1.0, -1.0], amplitudes.size), amplitudes):
+    for sign, amplitude in zip(np.resize([1.0, -1.0], amplitudes.size), amplitudes, strict=True):
         pieces.append(sign * _sine_cycles(amplitude, 5.0, 1, dt))
     velocity = 10.0 * stribeck_velocity
     pieces.append(_sine_cycles(velocity / (np.pi * 2.0), 2.0, 3, dt))
-    if speeds is None:
-        speeds = stribeck_velocity * np.array([0.3, 0.6, 1.0, 1.5, 2.5, 4.0, 7.0, 12.0, 25.0, 50.0, 100.0])
-    for index in rng.permutation(len(speeds)):
-        speed = float(speeds[index])
+    levels: Sequence[float] | FloatArray = (
+        stribeck_velocity * np.array([0.3, 0.6, 1.0, 1.5, 2.5, 4.0, 7.0, 12.0, 25.0, 50.0, 100.0])
+        if speeds is None
+        else speeds
+    )
+    for index in rng.permutation(len(levels)):
+        speed = float(levels[index])
         hold = max(0.05, 10.0 * presliding_range / speed)
         for sign in (1.0, -1.0):  # every speed in both directions, so asymmetry is identifiable
             pieces.append(sign * _plateau(speed, hold, 0.02, dt))
@@ -116,7 +119,7 @@ def make_data(
     force_true = simulate_position(params, x_true, dt)
     force = force_true + rng.normal(0.0, noise_std, x_true.size) if noise_std > 0 else force_true.copy()
     x = np.round(x_true / quantization) * quantization if quantization > 0 else x_true.copy()
-    t = np.arange(x_true.size) * dt
+    t = np.arange(x_true.size, dtype=np.float64) * dt
     return SyntheticData(
         data=MotionData(t, x, force, source=f"synthetic(seed={seed})"),
         params=params,

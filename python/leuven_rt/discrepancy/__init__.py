@@ -4,8 +4,8 @@ is missing (the effect catalogue of docs/effects.md), where, and how much better
 :mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.drive` (the presliding
 bank driven by the model's state), :mod:`.model` (fits),
 :mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
-:mod:`.diagnose` (the rounds), :mod:`.report` (JSON of docs/data-and-reports.md#diagnosis-report), :mod:`.plot` (figure),
-:mod:`.hidden` (generated data with hidden effects, to test it on).
+:mod:`.diagnose` (the rounds), :mod:`.report` (JSON of docs/data-and-reports.md#diagnosis-report),
+:mod:`.plot` (figure), :mod:`.hidden` (generated data with hidden effects, to test it on).
 
 It works from the data toolkit :mod:`leuven_rt.data`, not from the identification workflow.
 """

@@ -68,7 +68,7 @@ def diagnose(
             scores = []
             for name in candidates:
                 bar.set_postfix_str(name)
-                scores.append(cross_validate(effects + (name,), features, folds))
+                scores.append(cross_validate((*effects, name), features, folds))
                 bar.update(1)
             if current is None:  # an empty baseline is scored against predicting zero
                 current = zero_score(features, folds)
@@ -90,6 +90,6 @@ def diagnose(
         rms_before=rms(residuals[0]), rms_after=rms(residual), steps=steps,
         unexplained_significant=bool(excess > UNEXPLAINED * noise**2),
         unexplained_where=where_unexplained(features, residual, noise),
-        final_model=final, regions_before=regions(features, residuals[0]), regions_after=regions(features, residual),
-        features=features, residuals=residuals,
+        final_model=final, regions_before=regions(features, residuals[0]),
+        regions_after=regions(features, residual), features=features, residuals=residuals,
     )  # fmt: skip

@@ -1,7 +1,7 @@
 """The presliding bank driven by the modified Leuven model's own state.
 
-In the model (docs/model.md#hysteresis-force) the Maxwell-slip elements are driven not by the position x but by
-the deflection z of the state equation, dz/dt = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ: right after a
+In the model (docs/model.md#hysteresis-force) the Maxwell-slip elements are driven not by the position x
+but by the deflection z of the state equation, dz/dt = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ: right after a
 reversal z runs ahead of x (up to twice as fast), and as Fh nears the sliding level it stops
 following x. A bank driven by x alone (rate-independent Maxwell slip) misses both, by about
 the noise level on the generated logs. A :class:`Drive` is the nonlinear part of the
@@ -47,7 +47,8 @@ class Drive:
         # parameters, and weights that are nothing next to the largest are left out.
         keep = weights > 1e-9 * weights.max(initial=0.0)
         if not keep.any():
-            return features.x.copy()
+            unmoved: FloatArray = features.x.copy()
+            return unmoved
         scaled = weights[keep] / weights[keep].sum() * MARGIN
         params = Params(Fc=1.0, Fs=1.0, Vs=1.0, delta=1.0, n=self.n, sigma1=0.0, sigma2=0.0,
                         W=tuple(scaled), Delta=tuple(features.scales.deflections[keep]))  # fmt: skip

@@ -100,7 +100,7 @@ def direction_of_motion(
         return sign
     moves = np.flatnonzero(np.diff(raw)) + 1
     ways = np.sign(raw[moves] - raw[moves - 1])
-    for before, after, old, new in zip(moves[:-1], moves[1:], ways[:-1], ways[1:]):
+    for before, after, old, new in zip(moves[:-1], moves[1:], ways[:-1], ways[1:], strict=True):
         if old == new or after - before < 2:
             continue
         # The filter overshoots a step by a few hundredths of it: in a long stretch (a pause

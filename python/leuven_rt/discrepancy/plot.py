@@ -23,7 +23,7 @@ def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
     marked = region_masks(f)[worst]
     by_time.fill_between(f.t, 0, 1, where=marked, transform=by_time.get_xaxis_transform(), color="orange",
                          alpha=0.15, label=f"largest baseline residual: {worst}")  # fmt: skip
-    for label, residual in zip(labels, diagnosis.residuals):
+    for label, residual in zip(labels, diagnosis.residuals, strict=True):
         by_time.plot(f.t[usable], residual[usable], linewidth=0.5, label=label)
         by_velocity.plot(f.v[usable], residual[usable], ".", markersize=1, label=label)
         by_position.plot(f.x[usable], residual[usable], ".", markersize=1, label=label)

@@ -1,5 +1,5 @@
-"""The diagnosis report: the JSON object of docs/data-and-reports.md#diagnosis-report, plus the per-region numbers and the
-residuals kept for the figure and for people."""
+"""The diagnosis report: the JSON object of docs/data-and-reports.md#diagnosis-report, plus the
+per-region numbers and the residuals kept for the figure and for people."""
 
 from __future__ import annotations
 
@@ -24,7 +24,8 @@ class Step:
 
 @dataclass(frozen=True, eq=False)
 class Diagnosis:
-    """What :func:`leuven_rt.diagnose` returns; :meth:`to_dict` is the JSON of docs/data-and-reports.md#diagnosis-report."""
+    """What :func:`leuven_rt.diagnose` returns; :meth:`to_dict` is the JSON of
+    docs/data-and-reports.md#diagnosis-report."""
 
     samples: int
     noise_std: float
@@ -60,7 +61,7 @@ class Diagnosis:
                     "rms_before": s.rms_before,
                     "rms_after": s.rms_after,
                     "params": s.params,
-                }  # fmt: skip
+                }
                 for s in self.steps
             ],
             "unexplained": {"significant": self.unexplained_significant, "where": self.unexplained_where},
@@ -85,6 +86,6 @@ class Diagnosis:
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
         verdict = "significant" if self.unexplained_significant else "at the noise floor"
-        lines.append(f"final model: rms {self.rms_after:.3g} N ({self.rms_after / self.noise_std:.2f}x the noise "
-                     f"floor); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
+        lines.append(f"final model: rms {self.rms_after:.3g} N ({self.rms_after / self.noise_std:.2f}x "
+                     f"the noise floor); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
         return "\n".join(lines)

@@ -54,8 +54,9 @@ def blocks(features: Features) -> list[NDArray[np.bool_]]:
     index = np.flatnonzero(features.usable)
     if index.size < FOLDS * MIN_FOLD_SAMPLES:
         raise InputError(
-            f"data too short to split for validation: need at least {FOLDS * MIN_FOLD_SAMPLES} usable samples "
-            f"({FOLDS} blocks of {MIN_FOLD_SAMPLES}) after the filter edges, got {index.size}"
+            "data too short to split for validation: "
+            f"need at least {FOLDS * MIN_FOLD_SAMPLES} usable samples ({FOLDS} blocks of {MIN_FOLD_SAMPLES}) "
+            f"after the filter edges, got {index.size}"
         )
     masks = []
     for part in np.array_split(index, FOLDS):

@@ -15,13 +15,13 @@ from __future__ import annotations
 
 import numbers
 import time
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from tqdm import tqdm
 
 from .._core import MAX_ELEMENTS
-from .._typing import DataLike
+from .._typing import BoolArray, DataLike
 from ..data.records import as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
 from ..data.signals import Derivatives, estimate_derivatives, noise_floor
@@ -46,10 +46,15 @@ def _check_options(elements: Any, held_out: Any, max_evaluations: Any) -> None:
     if elements is not None and (
         isinstance(elements, bool)
         or not isinstance(elements, numbers.Integral)
-        or not 1 <= elements <= MAX_ELEMENTS
+        or not 1 <= int(elements) <= MAX_ELEMENTS  # int() is exact for any Integral
     ):
         raise InputError(f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {elements!r}")
-    if isinstance(held_out, bool) or not isinstance(held_out, numbers.Real) or not 0.0 <= held_out <= 0.5:
+    # numbers.Real declares no typed comparisons: compared as a float for the checker only.
+    if (
+        isinstance(held_out, bool)
+        or not isinstance(held_out, numbers.Real)
+        or not 0.0 <= cast(float, held_out) <= 0.5
+    ):
         raise InputError(f"`held_out` must be a fraction in [0, 0.5], got {held_out!r}")
     if (
         isinstance(max_evaluations, bool)
@@ -87,12 +92,12 @@ def identify(
 ) -> IdentificationResult:
     """Fits the modified Leuven model to a log of position and force.
 
-    ``data``: a :class:`MotionData`, a ``.csv`` (docs/data-and-reports.md#measured-data) or EMPS ``.mat`` path, or a
-    mapping of columns ``t``, ``x``, ``f`` [, ``v``]. ``elements``: the number N of Maxwell-slip
-    elements (default: chosen by held-out presliding error among 1..12). ``asymmetric``: fit
-    ``Fc_neg``, ``Fs_neg`` too. ``cutoff``: the position filter's cutoff [Hz] (default a tenth
-    of the Nyquist frequency). ``held_out``: the share of the record, at its end, kept for
-    scoring. ``max_evaluations``: the budget of each simulation-error stage (least-squares
+    ``data``: a :class:`MotionData`, a ``.csv`` (docs/data-and-reports.md#measured-data) or EMPS
+    ``.mat`` path, or a mapping of columns ``t``, ``x``, ``f`` [, ``v``]. ``elements``: the number N
+    of Maxwell-slip elements (default: chosen by held-out presliding error among 1..12).
+    ``asymmetric``: fit ``Fc_neg``, ``Fs_neg`` too. ``cutoff``: the position filter's cutoff [Hz]
+    (default a tenth of the Nyquist frequency). ``held_out``: the share of the record, at its end,
+    kept for scoring. ``max_evaluations``: the budget of each simulation-error stage (least-squares
     function evaluations, Jacobians not counted). ``progress``: a progress bar on stderr for fits
     that take more than a second.
 
@@ -102,7 +107,7 @@ def identify(
     began = time.perf_counter()
     _check_options(elements, held_out, max_evaluations)
     record = as_motion_data(data)
-    split = int(round(record.samples * (1.0 - held_out)))
+    split = round(record.samples * (1.0 - held_out))
     training = record.slice(0, split)
     derivatives = estimate_derivatives(training, cutoff)
     noise = noise_floor(training.f)
@@ -128,7 +133,8 @@ def identify(
     weight_scale = max(
         1.0, WEIGHT_MARGIN * max(sliding.Fs, sliding.Fs_neg or 0.0) / float(np.sum(presliding.W))
     )
-    stages.append(Stage("presliding", presliding.fit.rms, int(np.count_nonzero(inside)), presliding.fit.condition,
+    stages.append(Stage("presliding", presliding.fit.rms, int(np.count_nonzero(inside)),
+                        presliding.fit.condition,
                         {"elements": presliding.elements, "held_out_rms_by_elements": presliding.held_out_rms,
                          "weights_scaled_by": weight_scale}))  # fmt: skip
 
@@ -151,8 +157,8 @@ def identify(
     error = simulate_position(params, whole.x, record.dt) - record.f
     held = error[split:]
     if joint.condition > 1e8:
-        warnings.append(f"the joint fit is poorly conditioned (condition {joint.condition:.3g}): some parameters "
-                        "are not determined by this excitation")  # fmt: skip
+        warnings.append(f"the joint fit is poorly conditioned (condition {joint.condition:.3g}): "
+                        "some parameters are not determined by this excitation")  # fmt: skip
     report = IdentificationReport(
         samples=record.samples, dt=record.dt, cutoff=derivatives.cutoff, noise_std=noise,
         reversals=segments.reversals, presliding_range=presliding_range,
@@ -164,7 +170,8 @@ def identify(
     return IdentificationResult(params=params, report=report)
 
 
-def _sliding_rows(segments: Segments, derivatives: Derivatives, presliding_range: float) -> np.ndarray:
+def _sliding_rows(segments: Segments, derivatives: Derivatives, presliding_range: float) -> BoolArray:
     v, a = derivatives.v, derivatives.a
     steady = np.abs(a) * presliding_range <= STEADY_SHARE * v**2
-    return (segments.travel > SLIDING_AFTER * presliding_range) & steady & (v != 0.0)
+    rows: BoolArray = (segments.travel > SLIDING_AFTER * presliding_range) & steady & (v != 0.0)
+    return rows

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._typing import FloatArray
+from .._typing import BoolArray, FloatArray
 from ..data.regression import LinearFit, fit_linear
 from ..data.slip import element_deflections
 from ..errors import DataError
@@ -52,7 +52,7 @@ class PreslidingFit:
         return int(self.W.size)
 
 
-def _regressors(phi: FloatArray, v: FloatArray, rows: FloatArray) -> dict[str, FloatArray]:
+def _regressors(phi: FloatArray, v: FloatArray, rows: BoolArray) -> dict[str, FloatArray]:
     columns = {f"W{i}": phi[rows, i] for i in range(phi.shape[1])}
     columns["viscous"] = v[rows]
     return columns
@@ -62,8 +62,8 @@ def fit_presliding(
     x: FloatArray,
     v: FloatArray,
     force: FloatArray,
-    fit_rows: FloatArray,
-    check_rows: FloatArray,
+    fit_rows: BoolArray,
+    check_rows: BoolArray,
     presliding_range: float,
     elements: int | Sequence[int] | None = None,
 ) -> PreslidingFit:

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from .._typing import FloatArray
+from .._typing import BoolArray, FloatArray
 from ..params import Params
 from ..simulation import simulate_position
-from .sliding import DELTA_BOUNDS, VS_DECADES, scaled_condition
+from .sliding import DELTA_BOUNDS, VS_DECADES, dense_jacobian, scaled_condition
 
 #: Bounds of the transition-curve exponent n searched.
 N_BOUNDS = (0.5, 8.0)
@@ -62,7 +62,7 @@ class SimulationError:
     """
 
     def __init__(
-        self, x: FloatArray, dt: float, force: FloatArray, rows: FloatArray, tick: Callable[[], None]
+        self, x: FloatArray, dt: float, force: FloatArray, rows: BoolArray, tick: Callable[[], object]
     ) -> None:
         self.x, self.dt, self.force, self.rows, self.tick = x, dt, force, rows, tick
         self.evaluations = 0
@@ -102,7 +102,8 @@ class SimulationError:
             def column(j: int) -> FloatArray:
                 moved = np.array(p, copy=True)
                 moved[j] += steps[j]
-                return (self.residual(build(moved)) - base) / (moved[j] - p[j])
+                change: FloatArray = (self.residual(build(moved)) - base) / (moved[j] - p[j])
+                return change
 
             with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
                 return np.column_stack(list(pool.map(column, range(p.size))))
@@ -110,15 +111,16 @@ class SimulationError:
         return jacobian
 
 
-def _solve(objective: SimulationError, build: Callable[[FloatArray], Params], p0: FloatArray, lower: FloatArray,
-           upper: FloatArray, max_evaluations: int) -> tuple[Params, FloatArray, FloatArray]:  # fmt: skip
+def _solve(objective: SimulationError, build: Callable[[FloatArray], Params], p0: FloatArray,
+           lower: FloatArray, upper: FloatArray,
+           max_evaluations: int) -> tuple[Params, FloatArray, FloatArray]:  # fmt: skip
     """least_squares from ``p0`` within the bounds; the fitted params, residual and Jacobian."""
     lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
     p0 = np.clip(np.asarray(p0, dtype=float), lower, upper)
     result = least_squares(objective.function(build), p0, jac=objective.jacobian(build, lower, upper),
                            bounds=(lower, upper), x_scale="jac", ftol=TOLERANCE, xtol=TOLERANCE,
                            max_nfev=max_evaluations)  # fmt: skip
-    return build(result.x), result.fun, result.jac
+    return build(result.x), result.fun, dense_jacobian(result.jac)
 
 
 def fit_transition(base: Params, objective: SimulationError, max_evaluations: int) -> SimulationFit:
@@ -139,6 +141,7 @@ def fit_transition(base: Params, objective: SimulationError, max_evaluations: in
 def refine_jointly(start: Params, objective: SimulationError, max_evaluations: int) -> SimulationFit:
     """Every parameter but Δ: Fc, Fs − Fc ≥ 0, log Vs, δ, n, σ1 ≥ 0, σ2 ≥ 0, W > 0 (and the
     ``_neg`` levels when the start has them)."""
+    assert start.W is not None and start.Delta is not None  # the start comes from model_params
     Delta = np.asarray(start.Delta)
     asymmetric = start.Fc_neg is not None
     count = Delta.size

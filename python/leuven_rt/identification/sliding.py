@@ -10,6 +10,7 @@ from several Stribeck velocities spread over the measured speeds, keeping the be
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -57,7 +58,15 @@ def sliding_force(
     negative = v < 0
     fc = np.where(negative, Fc if Fc_neg is None else Fc_neg, Fc)
     fs = np.where(negative, Fs if Fs_neg is None else Fs_neg, Fs)
-    return np.sign(v) * (fc + (fs - fc) * np.exp(-(np.abs(v / Vs) ** delta))) + sigma2 * v
+    force: FloatArray = np.sign(v) * (fc + (fs - fc) * np.exp(-(np.abs(v / Vs) ** delta))) + sigma2 * v
+    return force
+
+
+def dense_jacobian(jacobian: object) -> FloatArray:
+    """``least_squares``' Jacobian, typed as what it is here: with a dense Jacobian (finite
+    differences or a callable returning an array) and the default ``tr_solver``, scipy returns a
+    float64 ndarray; the stubs also allow a sparse matrix or a LinearOperator."""
+    return cast(FloatArray, jacobian)
 
 
 def scaled_condition(jacobian: FloatArray) -> float:
@@ -121,5 +130,6 @@ def fit_sliding(v: FloatArray, force: FloatArray, asymmetric: bool = False) -> S
     return SlidingFit(
         Fc=fitted["Fc"], Fs=fitted["Fs"], Vs=fitted["Vs"], delta=fitted["delta"], sigma2=fitted["sigma2"],
         Fc_neg=fitted.get("Fc_neg"), Fs_neg=fitted.get("Fs_neg"),
-        rms=float(np.sqrt(np.mean(best.fun**2))), samples=int(v.size), condition=scaled_condition(best.jac),
+        rms=float(np.sqrt(np.mean(best.fun**2))), samples=int(v.size),
+        condition=scaled_condition(dense_jacobian(best.jac)),
     )  # fmt: skip

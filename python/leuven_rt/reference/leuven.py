@@ -21,6 +21,7 @@ velocity vₖ held over the step of length dt:
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,7 +40,8 @@ RTOL = 4.0 * np.finfo(np.float64).eps
 def _power(a: float, p: float) -> float:
     """aᵖ for a ≥ 0, infinite on overflow (Python floats raise instead; Rust gives inf)."""
     try:
-        return a**p
+        power: float = a**p  # a ≥ 0: never complex
+        return power
     except OverflowError:
         return math.inf
 
@@ -58,7 +60,7 @@ def stribeck_level(params: Params, v: float) -> float:
 class MaxwellSlip:
     """N elasto-slide elements in parallel (eq. 5); the memory is the array ζ of their positions."""
 
-    def __init__(self, W: tuple[float, ...], Delta: tuple[float, ...]) -> None:
+    def __init__(self, W: Sequence[float], Delta: Sequence[float]) -> None:
         self.W = np.asarray(W, dtype=np.float64)
         self.Delta = np.asarray(Delta, dtype=np.float64)
 
@@ -72,7 +74,8 @@ class MaxwellSlip:
     def forces(self, zeta: FloatArray, ys: FloatArray) -> FloatArray:
         """Trial Fh at many points at once (rows: points, columns: elements)."""
         deflection = np.clip(ys[:, None] - zeta, -self.Delta, self.Delta)
-        return np.sum(self.W * deflection / self.Delta, axis=1)
+        forces: FloatArray = np.sum(self.W * deflection / self.Delta, axis=1)
+        return forces
 
     def breakpoints(self, zeta: FloatArray) -> FloatArray:
         """Where the trial Fh changes slope: each element starts or stops slipping at ζᵢ ± Δᵢ."""

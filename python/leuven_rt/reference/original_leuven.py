@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any, Protocol, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -62,7 +62,8 @@ __all__ = [
 class TransitionCurve(Protocol):
     """Fd: odd, strictly increasing on (−limit, limit), with its inverse."""
 
-    limit: float
+    @property
+    def limit(self) -> float: ...  # read-only: a property or a plain attribute both fit
 
     def __call__(self, z: float) -> float: ...
 
@@ -79,7 +80,8 @@ class TanhCurve:
     def __post_init__(self) -> None:
         for name in ("F_max", "z_c"):
             value = getattr(self, name)
-            if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
+            # numbers.Real declares no typed comparisons: compared as a float for the checker only.
+            if not (isinstance(value, numbers.Real) and math.isfinite(value) and cast(float, value) > 0):
                 raise ParameterError(f"`{name}` must be finite and > 0, got {value!r}")
 
     @property

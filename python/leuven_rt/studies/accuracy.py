@@ -1,12 +1,12 @@
 """Accuracy of the discrete step: explicit vs implicit against a much finer solution.
 
-docs/model.md#accuracy-of-the-schemes states that with classic LuGre-like stiffness the explicit (forward Euler) step is
-useless at control-loop rates while the implicit (backward Euler) step stays accurate. This module
-measures that claim so the README can quote numbers anyone can rerun (``python
+docs/model.md#accuracy-of-the-schemes states that with classic LuGre-like stiffness the explicit
+(forward Euler) step is useless at control-loop rates while the implicit (backward Euler) step
+stays accurate. This module measures that claim so the README can quote numbers anyone can rerun (``python
 benches/accuracy.py``) and the tests can hold the implicit scheme to it.
 
-Scenario (docs/model.md#accuracy-of-the-schemes): LuGre, i.e. linear hysteresis Fh = σ0·z with n = 1, σ0 = 1e5 N/m,
-Fc = 1 N, Fs = 1.5 N, Vs = 1 mm/s, δ = 2, σ1 = √σ0 ≈ 316 N·s/m, σ2 = 0.4 N·s/m, driven from rest
+Scenario (docs/model.md#accuracy-of-the-schemes): LuGre, i.e. linear hysteresis Fh = σ0·z with n = 1,
+σ0 = 1e5 N/m, Fc = 1 N, Fs = 1.5 N, Vs = 1 mm/s, δ = 2, σ1 = √σ0 ≈ 316 N·s/m, σ2 = 0.4 N·s/m, driven from rest
 by v(t) = 10 mm/s · sin(2π·5 Hz·t) for 1 s.
 
 Reference: the implicit scheme at ``dt/refine`` with the velocity sampled from the same
@@ -29,8 +29,8 @@ from ..mechanics import simulate_mass
 from ..params import Params
 from ..simulation import simulate
 
-#: The LuGre-like parameter set of docs/model.md#accuracy-of-the-schemes; σ1 = √σ0 is the usual critically damped choice
-#: for a unit mass on the bristle spring.
+#: The LuGre-like parameter set of docs/model.md#accuracy-of-the-schemes; σ1 = √σ0 is the usual
+#: critically damped choice for a unit mass on the bristle spring.
 LUGRE = Params(
     Fc=1.0,
     Fs=1.5,
@@ -118,8 +118,8 @@ def step_accuracy(
     """RMS and max force error of each scheme at each rate, against a ``refine``× finer solution.
 
     Rows come rate by rate, explicit before implicit. ``duration`` [s] must be a whole number of
-    samples at every rate; a shorter one keeps tests quick. ``amplitude`` [m/s] scales the sine. A scheme that raises
-    :class:`DivergenceError` gets a row with infinite errors instead of failing the table.
+    samples at every rate; a shorter one keeps tests quick. ``amplitude`` [m/s] scales the sine. A
+    scheme that raises :class:`DivergenceError` gets a row with infinite errors instead of failing the table.
     """
     if isinstance(refine, bool) or not isinstance(refine, int) or refine < 2:
         raise ValueError(f"`refine` must be an integer >= 2, got {refine!r}")
@@ -167,10 +167,12 @@ def report(
     """The accuracy tables the README quotes: one per sine amplitude, with the stability numbers.
 
     Linearised, the state equation is dz/dt = v − (|v|·σ0/g)·z, so forward Euler is stable only
-    while dt·|v|·σ0/g(v) < 2. At the 10 mm/s of docs/model.md#accuracy-of-the-schemes that number peaks at exactly 1 at 1 kHz, so
-    the explicit step is still stable there; 30 mm/s shows what happens past the limit.
+    while dt·|v|·σ0/g(v) < 2. At the 10 mm/s of docs/model.md#accuracy-of-the-schemes that number
+    peaks at exactly 1 at 1 kHz, so the explicit step is still stable there; 30 mm/s shows what
+    happens past the limit.
     """
     p = LUGRE
+    assert p.sigma0 is not None  # LUGRE is linear hysteresis: sigma0, no elements
     lines = [
         f"LuGre-like scenario: sigma0 = {p.sigma0:g} N/m, n = {p.n:g}, Fc = {p.Fc:g} N, "
         f"Fs = {p.Fs:g} N, Vs = {p.Vs:g} m/s, delta = {p.delta:g}, sigma1 = {p.sigma1:.4g} N*s/m, "
@@ -302,6 +304,7 @@ def format_force_table(rows: Sequence[MassAccuracyRow]) -> str:
 def force_report(rates: Sequence[float] = (100.0, 1000.0, 10000.0), refine: int = 100) -> str:
     """The force-driven table with its scenario and the explicit coupling's stability numbers."""
     p = LUGRE
+    assert p.sigma0 is not None  # LUGRE is linear hysteresis: sigma0, no elements
     lines = [
         f"Force-driven scenario: a free {MASS:g} kg mass on the same friction, "
         f"u = {FORCE_AMPLITUDE:g}*sin(2*pi*{FREQUENCY:g}*t) N for 1 s from rest; reference: implicit "

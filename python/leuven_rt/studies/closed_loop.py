@@ -160,7 +160,7 @@ def simulate(scenario: Scenario, compensation: str) -> Run:
     substeps = round(scenario.plant_rate / scenario.rate)
     plant_dt = dt / substeps
     samples = round(scenario.duration * scenario.rate)
-    t = np.arange(samples + 1) * dt
+    t = np.arange(samples + 1, dtype=np.float64) * dt
     desired, _, acceleration = trajectory(scenario, t)
     planned_velocity = np.diff(desired) / dt  # mean velocity of each control period
     rng = np.random.default_rng(scenario.seed)
@@ -248,14 +248,17 @@ def report(comparison: Comparison) -> str:
         f"elements (sum W = {sum(s.true.W or ()):g} N); simulated at {s.plant_rate:g} Hz.",
         f"Compensator's model: Fc = {s.model.Fc:g} N, Fs = {s.model.Fs:g} N, Vs = {s.model.Vs * 1e3:g} mm/s, "
         f"sigma2 = {s.model.sigma2:g} N*s/m, sum W = {sum(s.model.W or ()):g} N, Delta x1.25.",
-        f"Control: {s.rate:g} Hz PID (poles at -2π·{s.bandwidth:g} Hz: Kp = {kp:.3g} N/m, Ki = {ki:.3g} N/(m*s), "
-        f"Kd = {kd:.3g} N*s/m, derivative filtered at {s.derivative_filter:g} Hz) + m·a_d feedforward; "
+        f"Control: {s.rate:g} Hz PID (poles at -2π·{s.bandwidth:g} Hz: Kp = {kp:.3g} N/m, "
+        f"Ki = {ki:.3g} N/(m*s), Kd = {kd:.3g} N*s/m, derivative filtered at {s.derivative_filter:g} Hz) "
+        "+ m·a_d feedforward; "
         f"encoder {s.encoder_resolution * 1e9:g} nm, noise {s.noise * 1e9:g} nm rms.",
         f"Trajectory: x_d = {s.amplitude * 1e3:g} mm·(1 − cos 2π·{s.frequency:g} Hz·t) over {s.duration:g} s "
-        f"(peak {s.amplitude * 2 * np.pi * s.frequency * 1e3:.3g} mm/s, {len(comparison.reversals)} reversals); "
+        f"(peak {s.amplitude * 2 * np.pi * s.frequency * 1e3:.3g} mm/s, "
+        f"{len(comparison.reversals)} reversals); "
         f"glitch = mean peak |e| in the {s.glitch_window * 1e3:g} ms after each reversal.",
         "",
-        "| compensation | RMS error [µm] | max error [µm] | reversal glitch [µm] | RMS ratio vs none | RMS ratio vs Coulomb |",
+        "| compensation | RMS error [µm] | max error [µm] | reversal glitch [µm] "
+        "| RMS ratio vs none | RMS ratio vs Coulomb |",
         "|---|---:|---:|---:|---:|---:|",
     ]
     for name in COMPENSATIONS:
@@ -282,7 +285,7 @@ def plot(comparison: Comparison, path: str | Path) -> Path:
     whole.set(xlabel="t [s]", ylabel="tracking error [µm]", title="PID at 1 kHz on a stage with friction")
     whole.legend(fontsize=8, loc="upper right")
     zoom.axvline(0.0, color="0.6", lw=0.8)
-    zoom.set(xlabel="time after the reversal at t = %.2f s [ms]" % reversal, ylabel="tracking error [µm]",
+    zoom.set(xlabel=f"time after the reversal at t = {reversal:.2f} s [ms]", ylabel="tracking error [µm]",
              title="around one velocity reversal (quadrant glitch)")  # fmt: skip
     zoom.legend(fontsize=8)
     return save(drawing, path, dpi=120)

@@ -36,6 +36,7 @@ class DemoResult:
 
     def text(self) -> str:
         params = self.params
+        assert params.Delta is not None  # the standard parameters have Maxwell-slip elements
         return "\n".join([
             "Presliding-to-sliding scenario (position input, 10 kHz, implicit step)",
             f"  parameters: Fc = {params.Fc} N, Fs = {params.Fs} N, Vs = {params.Vs} m/s, "
@@ -71,6 +72,7 @@ def run_demo(out: Path) -> DemoResult:
     drawing.tight_layout()
     figure_path = save(drawing, out / "presliding_to_sliding.png", dpi=120)
 
+    assert params.Delta is not None  # the standard parameters have Maxwell-slip elements
     presliding = excitation.amplitude < 0.5 * params.Delta[-1]
     sliding = excitation.t > excitation.t[-1] - 1.0
     return DemoResult(

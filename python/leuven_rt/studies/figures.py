@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
@@ -104,9 +105,9 @@ def loop_closure(dt: float) -> LoopClosureRun:
     """Simulates the Fig. 1 scenario at step ``dt`` with both models."""
     p = FIG1_PARAMS
     samples = round(FIG1_DURATION / dt)
-    t = np.arange(samples) * dt
+    t = np.arange(samples, dtype=np.float64) * dt
     profile = PchipInterpolator(np.array(FIG1_KNOTS[0]) * FIG1_DURATION, FIG1_KNOTS[1])
-    u = profile(t)
+    u = np.asarray(profile(t), dtype=np.float64)
     # Modified model: the Rust mass, stepped to read the hysteresis force from its state.
     system = MassSystem(p, mass=1.0)
     bank = MaxwellSlip(p.W or (), p.Delta or ())
@@ -143,6 +144,7 @@ def figure_1(out: Path, steps: Sequence[float] = FIG1_STEPS) -> FigureReport:
             (None, None, ""),
             (run.microviscous_modified, run.microviscous_original, "micro-viscous term σ1·dz/dt [N]"),
         ],
+        strict=True,
     ):
         if modified is None:
             ax.plot(run.x_original * 1e6, run.friction_original, label="original Leuven model", linewidth=1.6)
@@ -178,7 +180,8 @@ def figure_1(out: Path, steps: Sequence[float] = FIG1_STEPS) -> FigureReport:
     ])  # fmt: skip
     for r in runs:
         report.lines.append(
-            f"| {r.dt:g} | {r.largest_change(r.friction_original):.3g} | {r.largest_change(r.friction_modified):.3g} |"
+            f"| {r.dt:g} | {r.largest_change(r.friction_original):.3g} "
+            f"| {r.largest_change(r.friction_modified):.3g} |"
         )
     return report
 
@@ -204,7 +207,7 @@ def fitted_bank(curve: TanhCurve = CURVE, elements: int = ELEMENTS) -> tuple[Flo
 
 def _segments(points: Sequence[float], per_segment: int) -> FloatArray:
     """A piecewise-linear path through ``points``."""
-    parts = [np.linspace(a, b, per_segment, endpoint=False) for a, b in zip(points[:-1], points[1:])]
+    parts = [np.linspace(a, b, per_segment, endpoint=False) for a, b in pairwise(points)]
     return np.concatenate([*parts, [points[-1]]])
 
 
@@ -233,7 +236,8 @@ def figure_4_5(out: Path) -> FigureReport:
     runs = [hysteresis_along(path, w, delta) for path in (PATH_1, PATH_2)]
     exact = [hysteresis_along(path, w, delta, MasingMaxwell(w, delta)) for path in (PATH_1, PATH_2)]
     drawing, axes = figure(1, 3, size=(15, 4.6))
-    for (z, stack, maxwell), name, style in zip(runs, ("path 1", "path 2 (extra loop)"), ("-", "--")):
+    names, styles = ("path 1", "path 2 (extra loop)"), ("-", "--")
+    for (z, stack, maxwell), name, style in zip(runs, names, styles, strict=True):
         axes[0].plot(np.arange(z.size), z * 1e6, style, label=name)
         axes[1].plot(z * 1e6, stack, style, label=name)
         axes[2].plot(z * 1e6, maxwell, style, label=name)
@@ -260,7 +264,8 @@ def figure_4_5(out: Path) -> FigureReport:
         f"z_c = {CURVE.z_c * 1e6:g} µm) vs Maxwell slip with {ELEMENTS} fitted elements",
         f"  largest |Fh_stack - Fh_maxwell| over both paths: {difference:.3g} N "
         f"({100 * difference / CURVE.F_max:.3g} % of F_max; the piecewise-linear approximation)",
-        f"  same, stack with the Masing curve of the 10 elements (the same hysteresis): {difference_exact:.3g} N",
+        "  same, stack with the Masing curve of the 10 elements (the same hysteresis): "
+        f"{difference_exact:.3g} N",
         f"  Fh at point a (z = {za:g} µm): stack {runs[0][1][-1]:.6f} / {runs[1][1][-1]:.6f} N, "
         f"Maxwell slip {runs[0][2][-1]:.6f} / {runs[1][2][-1]:.6f} N (path 1 / path 2)",
     ]
@@ -302,7 +307,7 @@ def free_response(dt: float = 1e-4, duration: float = 0.3, depth: int = FREE_DEP
         sizes.append(sample.stack_size)
     v = np.diff(np.concatenate(([FREE_START], x)))
     reversals = int(np.count_nonzero(np.diff(np.sign(v[v != 0])) != 0))
-    return FreeResponse(np.arange(1, samples + 1) * dt, np.array(x), modified.position,
+    return FreeResponse(np.arange(1, samples + 1, dtype=np.float64) * dt, np.array(x), modified.position,
                         np.array(sizes), reversals, overflow, system.elements)  # fmt: skip
 
 
@@ -339,8 +344,8 @@ def figure_free_response(out: Path) -> FigureReport:
     if run.overflow is None:
         lines.append(f"  no overflow within {run.t[-1]:g} s ({run.reversals} reversals)")
     else:
-        lines.append(f"  original model: {run.overflow} (t = {run.t[n]:.4f} s, after {run.reversals} reversals "
-                     "without a closed loop)")  # fmt: skip
+        lines.append(f"  original model: {run.overflow} (t = {run.t[n]:.4f} s, "
+                     f"after {run.reversals} reversals without a closed loop)")  # fmt: skip
     lines.append(f"  Maxwell slip memory: {run.elements} numbers throughout, no limit on reversals")
     return FigureReport(path, lines)
 
