@@ -26,6 +26,7 @@ impl Stribeck {
     }
 
     /// A curve whose levels for v < 0 are `fc_neg`, `fs_neg` (same rules as `fc`, `fs`).
+    #[allow(clippy::similar_names)] // the paper's pairs: fc and fs, fc_neg and fs_neg
     pub fn asymmetric(
         fc: f64,
         fs: f64,

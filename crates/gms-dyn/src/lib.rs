@@ -16,6 +16,8 @@
 //! The bindings on top only convert arguments and map [`Error`]s to exception classes or
 //! status codes.
 
+#![forbid(unsafe_code)]
+
 mod channels;
 mod compensator;
 mod error;
