@@ -6,13 +6,16 @@ step() { printf '\n==> %s\n' "$*"; }
 
 step "cargo fmt --check"
 cargo fmt --all --check
-step "cargo clippy --all-targets -- -D warnings"
-cargo clippy --all-targets -- -D warnings
-cargo clippy -p nostd-check --profile nostd -- -D warnings
-step "cargo test"
-cargo test
+step "cargo clippy --workspace --all-targets -- -D warnings"
+cargo clippy --workspace --all-targets -- -D warnings
 step "no_std proof: a #![no_std] static library without allocator links gms-core"
-cargo build -p nostd-check --profile nostd
+# A workspace of its own, so that no std crate switches features on in its dependencies.
+cargo clippy --manifest-path crates/nostd-check/Cargo.toml --profile nostd -- -D warnings
+cargo build --manifest-path crates/nostd-check/Cargo.toml --profile nostd
+step "cargo test --workspace"
+cargo test --workspace
+step "cargo doc --workspace --no-deps (warnings are errors)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 step "Python build"
 source scripts/setup.sh
 step "pytest"

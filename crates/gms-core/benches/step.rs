@@ -12,7 +12,7 @@ const DT: f64 = 1e-3;
 
 fn velocity() -> Vec<f64> {
     (0..1000)
-        .map(|k| 0.01 * (2.0 * core::f64::consts::PI * 5.0 * k as f64 * DT).sin())
+        .map(|k| 0.01 * (2.0 * core::f64::consts::PI * 5.0 * f64::from(k) * DT).sin())
         .collect()
 }
 

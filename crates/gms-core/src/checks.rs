@@ -8,7 +8,7 @@ pub(crate) fn positive(value: f64, field: Field) -> Result<f64, Error> {
     if value.is_finite() && value >= f64::MIN_POSITIVE {
         Ok(value)
     } else {
-        Err(Error::NotPositive(field))
+        Err(Error::NotPositive { field, value })
     }
 }
 
@@ -17,7 +17,7 @@ pub(crate) fn non_negative(value: f64, field: Field) -> Result<f64, Error> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(Error::Negative(field))
+        Err(Error::Negative { field, value })
     }
 }
 
@@ -26,14 +26,22 @@ pub(crate) fn finite(value: f64, field: Field) -> Result<(), Error> {
     if value.is_finite() {
         Ok(())
     } else {
-        Err(Error::NotFinite { field, index: 0 })
+        Err(Error::NotFinite {
+            field,
+            index: 0,
+            value,
+        })
     }
 }
 
 /// Checks that every sample of a block input is finite, naming the first one that is not.
 pub(crate) fn all_finite(values: &[f64], field: Field) -> Result<(), Error> {
     match values.iter().position(|value| !value.is_finite()) {
-        Some(index) => Err(Error::NotFinite { field, index }),
+        Some(index) => Err(Error::NotFinite {
+            field,
+            index,
+            value: values[index],
+        }),
         None => Ok(()),
     }
 }

@@ -26,13 +26,13 @@
 //! say, the Δᵢ change. So [`Compensator::set_params`] re-initialises the state for the new
 //! parameters: the elements are first made consistent with the new Δᵢ at the current z (those
 //! stretched beyond them slip), then z is moved along the new bank's trial curve until the new
-//! Fh equals the old one (clamped to ±ΣWᵢ of the new bank, the only forces it can hold). The
+//! Fh equals the old one (clamped to ±`ΣWᵢ` of the new bank, the only forces it can hold). The
 //! next sample then starts from the force the loop has just applied, and the transition to the
 //! new model's behaviour follows the model's own dynamics: the change over that sample is O(dt)
 //! like any other's (tests/compensator.rs checks that it shrinks with dt, while the naive swap
 //! jumps by a fixed amount). What changes at once is the part without memory: σ2·v by Δσ2·v,
 //! and σ1·ż because ż = v·(1 − |Fh/g(v)|ⁿ·sgn(Fh)/sgn(v)) now uses the new g(v), by at most
-//! σ1·|v|·|1 − |Fh/g_new(v)|ⁿ|. Both are zero at rest and are the new model's answer to the same
+//! σ1·|v|·|1 − |Fh/`g_new`(v)|ⁿ|. Both are zero at rest and are the new model's answer to the same
 //! motion, not an artefact of the swap.
 
 use crate::checks::positive;
@@ -43,10 +43,10 @@ use crate::model::{Params, Scheme, State};
 /// What the compensator's input is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Mode {
-    /// The desired velocity [m/s]: friction feedforward along the planned motion.
+    /// The desired velocity \[m/s\]: friction feedforward along the planned motion.
     #[default]
     Feedforward,
-    /// The measured position [m]: the model run as an observer of the real motion.
+    /// The measured position \[m\]: the model run as an observer of the real motion.
     Observer,
 }
 
@@ -103,8 +103,24 @@ impl<H: Hysteresis> Compensator<H> {
                     .step(&mut self.state, input, self.dt, Scheme::Implicit)?
             }
             Mode::Observer => {
+                let previous = self.state.last_position;
                 self.params
-                    .step_position(&mut self.state, input, self.dt, Scheme::Implicit)?
+                    .step_position(&mut self.state, input, self.dt, Scheme::Implicit)
+                    .map_err(|error| match (error, previous) {
+                        // A finite position can still jump too far for one sample: say so with
+                        // the positions, not with a velocity the caller never gave.
+                        (
+                            Error::NotFinite {
+                                field: Field::v, ..
+                            },
+                            Some(previous),
+                        ) => Error::VelocityNotFinite {
+                            x: input,
+                            previous,
+                            dt: self.dt,
+                        },
+                        (error, _) => error,
+                    })?
             }
         };
         self.output = force;
@@ -158,7 +174,7 @@ impl<H: Hysteresis> Compensator<H> {
         &self.state
     }
 
-    /// The sample time [s].
+    /// The sample time \[s\].
     pub fn dt(&self) -> f64 {
         self.dt
     }
@@ -176,7 +192,7 @@ impl<H: Hysteresis> Compensator<H> {
 /// linear piece at a time towards `target`, solving each piece in closed form. A bank has two
 /// breakpoints per element, hence at most 2N + 1 pieces; the cap below counts them from the size
 /// of the memory (one f64 per element). Starting from committed elements, the trial is flat in
-/// the direction of the walk only where every element is saturated, i.e. at ±ΣWᵢ, which a
+/// the direction of the walk only where every element is saturated, i.e. at ±`ΣWᵢ`, which a
 /// clamped `target` never lies beyond.
 fn match_force<H: Hysteresis>(bank: &H, memory: &H::Memory, start: f64, target: f64) -> f64 {
     let elements = core::mem::size_of::<H::Memory>() / core::mem::size_of::<f64>();
@@ -258,10 +274,10 @@ mod tests {
     fn bad_dt_and_inputs_are_errors_that_change_nothing() {
         let params = leuven([0.6, 0.6, 0.6], [1e-6, 2e-6, 4e-6], 0.4);
         for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
-            assert_eq!(
+            assert!(matches!(
                 Compensator::new(params, dt, Mode::Observer),
-                Err(Error::NotPositive(Field::dt))
-            );
+                Err(Error::NotPositive { field: Field::dt, value }) if value.to_bits() == dt.to_bits()
+            ));
         }
         for mode in [Mode::Feedforward, Mode::Observer] {
             let mut compensator = Compensator::new(params, 1e-3, mode).unwrap();
@@ -270,13 +286,11 @@ mod tests {
             }
             let before = compensator;
             for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-                assert_eq!(
+                assert!(matches!(
                     compensator.step(bad),
-                    Err(Error::NotFinite {
-                        field: mode.field(),
-                        index: 0
-                    })
-                );
+                    Err(Error::NotFinite { field, index: 0, value })
+                        if field == mode.field() && value.to_bits() == bad.to_bits()
+                ));
                 assert_eq!(compensator, before);
                 assert!(compensator.output().is_finite());
             }
@@ -287,9 +301,10 @@ mod tests {
         let before = observer;
         assert_eq!(
             observer.step(f64::MAX),
-            Err(Error::NotFinite {
-                field: Field::v,
-                index: 0
+            Err(Error::VelocityNotFinite {
+                x: f64::MAX,
+                previous: -f64::MAX,
+                dt: 1e-3
             })
         );
         assert_eq!(observer, before);

@@ -100,34 +100,81 @@ impl fmt::Display for Field {
     }
 }
 
-/// Everything that can be wrong with parameters or inputs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Everything that can be wrong with parameters or inputs, with the value that broke the rule.
+///
+/// Small and `Copy`, so that a real-time step can return it; its [`Display`](fmt::Display)
+/// writes the whole message ("`Fc` must be finite and > 0, got -1.0"), with floats spelled as
+/// Python prints them (`0.0`, `nan`, `inf`) because the Python package shows these messages.
+///
+/// Two errors are equal when they are the same variant with bit-identical values, so that an
+/// error carrying NaN equals itself (and `Eq` holds).
+#[derive(Clone, Copy, Debug)]
 pub enum Error {
-    /// The field must be finite and strictly positive.
-    NotPositive(Field),
+    /// The field must be finite and strictly positive (and not subnormal).
+    NotPositive {
+        /// The field at fault.
+        field: Field,
+        /// The value that came.
+        value: f64,
+    },
     /// The field must be finite and non-negative.
-    Negative(Field),
+    Negative {
+        /// The field at fault.
+        field: Field,
+        /// The value that came.
+        value: f64,
+    },
     /// The field must be finite (any sign).
-    NotFiniteValue(Field),
+    NotFiniteValue {
+        /// The field at fault.
+        field: Field,
+        /// The value that came.
+        value: f64,
+    },
     /// A static level is below its Coulomb level (`Fs < Fc` or `Fs_neg < Fc_neg`).
-    StaticBelowCoulomb(Field),
-    /// Element `index` of `W` or `Delta` is not finite and strictly positive.
+    StaticBelowCoulomb {
+        /// `Fs` or `Fs_neg`.
+        field: Field,
+        /// The Coulomb level it must reach (`Fc` or `Fc_neg`).
+        coulomb: f64,
+        /// The static level that came.
+        value: f64,
+    },
+    /// Element `index` of `W` or `Delta` is not finite and strictly positive (or W/Δ overflows).
     Element {
         /// `W` or `Delta`.
         field: Field,
         /// Index of the offending element.
         index: usize,
+        /// The value that came.
+        value: f64,
     },
     /// A Maxwell-slip bank needs at least one element.
     NoElements,
     /// `sum(W) <= max(Fs, Fs_neg)`: the hysteresis force can never balance the Stribeck curve.
-    ElementsTooWeak,
+    ElementsTooWeak {
+        /// The largest hysteresis force, sum(W).
+        sum: f64,
+        /// The largest static level, max(`Fs`, `Fs_neg`).
+        peak: f64,
+    },
     /// Input sample `index` of `field` is NaN or infinite (a single step reports index 0).
     NotFinite {
-        /// `v`, `x` or `dt`.
+        /// `v`, `x`, `u`, `f`, or the entries of `initial`.
         field: Field,
         /// Index of the first offending sample.
         index: usize,
+        /// The value that came (for a velocity computed from positions, that velocity).
+        value: f64,
+    },
+    /// A finite position `x` after `previous` over `dt` gives a velocity that is not finite.
+    VelocityNotFinite {
+        /// The position that came.
+        x: f64,
+        /// The position before it.
+        previous: f64,
+        /// The time step.
+        dt: f64,
     },
     /// The explicit scheme produced a non-finite state at sample `index`; the step is too
     /// large for the stiffness. The state is left as it was before that sample.
@@ -136,15 +183,38 @@ pub enum Error {
         index: usize,
     },
     /// The field must be in the interval (0, 1].
-    NotInUnitInterval(Field),
+    NotInUnitInterval {
+        /// The field at fault.
+        field: Field,
+        /// The value that came.
+        value: f64,
+    },
     /// `max_trace` is below the trace of the initial covariance (parameters × `initial_covariance`).
-    TraceBelowInitial,
+    TraceBelowInitial {
+        /// Number of estimated parameters.
+        parameters: usize,
+        /// The initial covariance p0 of each parameter.
+        initial_covariance: f64,
+        /// The `max_trace` that came.
+        max_trace: f64,
+    },
     /// A least-squares update overflowed although its inputs were finite: they are too large
     /// for f64 arithmetic (inputs far outside SI magnitudes). The state is left as it was
     /// before that sample (a single update reports index 0).
     Overflow {
         /// Index of the sample whose update overflowed.
         index: usize,
+    },
+    /// As [`Error::Overflow`], for an online identifier that knows its inputs x, v and f.
+    InputsOverflow {
+        /// Index of the sample whose update overflowed.
+        index: usize,
+        /// The position of that sample.
+        x: f64,
+        /// The velocity of that sample.
+        v: f64,
+        /// The measured force of that sample (NaN for a prediction, which has none).
+        f: f64,
     },
     /// An input slice of a block call does not have the length of the first input.
     InputLengthMismatch {
@@ -164,39 +234,168 @@ pub enum Error {
     },
 }
 
-impl fmt::Display for Error {
+/// A float as the Python package prints it: shortest round-trip digits, `nan`, `inf`, `-inf`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shown(pub f64);
+
+impl fmt::Display for Shown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_nan() {
+            f.write_str("nan")
+        } else {
+            // Debug is Rust's shortest round-trip spelling, `inf` and `-inf` included.
+            write!(f, "{:?}", self.0)
+        }
+    }
+}
+
+/// Why a positive value was refused although it is > 0: it is subnormal, and its reciprocal
+/// overflows.
+fn subnormal_note(value: f64) -> &'static str {
+    if value > 0.0 && value < f64::MIN_POSITIVE {
+        " (a subnormal number: at least 2.2e-308 is needed)"
+    } else {
+        ""
+    }
+}
+
+/// An [`Error`] of one channel among several: sample-located messages name the channel too
+/// ("at channel 2, sample 7"); the others read as without it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InChannel {
+    /// Index of the channel.
+    pub channel: usize,
+    /// What went wrong there.
+    pub error: Error,
+}
+
+impl Error {
+    /// This error, located in `channel` of several.
+    pub const fn in_channel(self, channel: usize) -> InChannel {
+        InChannel {
+            channel,
+            error: self,
+        }
+    }
+
+    #[allow(clippy::too_many_lines)] // one arm per variant
+    fn write(&self, f: &mut fmt::Formatter<'_>, channel: Option<usize>) -> fmt::Result {
+        let at = |f: &mut fmt::Formatter<'_>, index: usize| match channel {
+            Some(channel) => write!(f, "channel {channel}, sample {index}"),
+            None => write!(f, "sample {index}"),
+        };
         match *self {
-            Error::NotPositive(field) => write!(f, "`{field}` must be finite and > 0"),
-            Error::Negative(field) => write!(f, "`{field}` must be finite and >= 0"),
-            Error::NotFiniteValue(field) => write!(f, "`{field}` must be finite"),
-            Error::StaticBelowCoulomb(Field::Fs_neg) => f.write_str("`Fs_neg` must be >= `Fc_neg`"),
-            Error::StaticBelowCoulomb(field) => write!(f, "`{field}` must be >= `Fc`"),
-            Error::Element { field, index } => {
-                write!(f, "`{field}[{index}]` must be finite and > 0")
+            Error::NotPositive { field, value } => write!(
+                f,
+                "`{field}` must be finite and > 0, got {}{}",
+                Shown(value),
+                subnormal_note(value)
+            ),
+            Error::Negative { field, value } => {
+                write!(f, "`{field}` must be finite and >= 0, got {}", Shown(value))
             }
+            Error::NotFiniteValue { field, value } => {
+                write!(f, "`{field}` must be finite, got {}", Shown(value))
+            }
+            Error::StaticBelowCoulomb {
+                field,
+                coulomb,
+                value,
+            } => {
+                let coulomb_field = if field == Field::Fs_neg {
+                    Field::Fc_neg
+                } else {
+                    Field::Fc
+                };
+                write!(
+                    f,
+                    "`{field}` must be >= `{coulomb_field}` = {}, got {}",
+                    Shown(coulomb),
+                    Shown(value)
+                )
+            }
+            Error::Element {
+                field,
+                index,
+                value,
+            } => write!(
+                f,
+                "`{field}[{index}]` must be finite and > 0, got {}",
+                Shown(value)
+            ),
             Error::NoElements => f.write_str("`W` and `Delta` need at least one element"),
-            Error::ElementsTooWeak => f.write_str(
-                "`sum(W)` must be > max(`Fs`, `Fs_neg`), or steady sliding is unreachable",
+            Error::ElementsTooWeak { sum, peak } => write!(
+                f,
+                "`sum(W)` must be > max(`Fs`, `Fs_neg`) = {}, got sum(W) = {}: the hysteresis \
+                 force could never balance the Stribeck curve",
+                Shown(peak),
+                Shown(sum)
             ),
-            Error::NotFinite { field, index } => {
-                write!(f, "`{field}` must be finite (sample {index} is not)")
+            Error::NotFinite {
+                field,
+                index,
+                value,
+            } => {
+                write!(f, "`{field}` must be finite, got {} at ", Shown(value))?;
+                match field {
+                    // A parameter vector, not a signal: its entries are not samples.
+                    Field::initial | Field::regressor => write!(f, "entry {index}"),
+                    _ => at(f, index),
+                }
             }
-            Error::Diverged { index } => write!(
+            Error::VelocityNotFinite { x, previous, dt } => write!(
                 f,
-                "the explicit step diverged at sample {index}: dt is too large for the \
-                 stiffness; use the implicit scheme"
+                "`x` = {} after {} over dt = {} gives a velocity that is not finite",
+                Shown(x),
+                Shown(previous),
+                Shown(dt)
             ),
-            Error::NotInUnitInterval(field) => write!(f, "`{field}` must be in (0, 1]"),
-            Error::TraceBelowInitial => f.write_str(
-                "`max_trace` must be >= the trace of the initial covariance \
-                 (parameters × `initial_covariance`)",
-            ),
-            Error::Overflow { index } => write!(
-                f,
-                "the least-squares update overflowed at sample {index}: the inputs are too \
-                 large for f64 arithmetic (are they in SI units?)"
-            ),
+            Error::Diverged { index } => {
+                f.write_str("the explicit step diverged at ")?;
+                at(f, index)?;
+                f.write_str(": dt is too large for the stiffness; use the implicit scheme")
+            }
+            Error::NotInUnitInterval { field, value } => {
+                write!(f, "`{field}` must be in (0, 1], got {}", Shown(value))
+            }
+            Error::TraceBelowInitial {
+                parameters,
+                initial_covariance,
+                max_trace,
+            } => {
+                // The same product the check compares with.
+                #[allow(clippy::cast_precision_loss)] // a parameter count is far below 2^52
+                let trace = parameters as f64 * initial_covariance;
+                write!(
+                    f,
+                    "`max_trace` must be >= the trace of the initial covariance, {parameters} × \
+                     initial_covariance = {}, got {}",
+                    Shown(trace),
+                    Shown(max_trace)
+                )
+            }
+            Error::Overflow { index } => {
+                f.write_str("the least-squares update overflowed at ")?;
+                at(f, index)?;
+                f.write_str(": the inputs are too large for f64 arithmetic (are they in SI units?)")
+            }
+            Error::InputsOverflow {
+                index,
+                x,
+                v,
+                f: force,
+            } => {
+                f.write_str("the least-squares update overflowed at ")?;
+                at(f, index)?;
+                write!(
+                    f,
+                    ": x = {}, v = {}, f = {} are too large for f64 arithmetic (are they in SI \
+                     units?)",
+                    Shown(x),
+                    Shown(v),
+                    Shown(force)
+                )
+            }
             Error::InputLengthMismatch {
                 field,
                 expected,
@@ -209,4 +408,149 @@ impl fmt::Display for Error {
     }
 }
 
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write(f, None)
+    }
+}
+
+impl fmt::Display for InChannel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.error.write(f, Some(self.channel))
+    }
+}
+
+impl PartialEq for Error {
+    #[allow(clippy::too_many_lines)] // one arm per variant
+    fn eq(&self, other: &Self) -> bool {
+        // Bit-identical floats: NaN equals itself, 0.0 and -0.0 differ (they print differently).
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        match (*self, *other) {
+            (
+                Error::NotPositive { field, value },
+                Error::NotPositive {
+                    field: other,
+                    value: v,
+                },
+            )
+            | (
+                Error::Negative { field, value },
+                Error::Negative {
+                    field: other,
+                    value: v,
+                },
+            )
+            | (
+                Error::NotFiniteValue { field, value },
+                Error::NotFiniteValue {
+                    field: other,
+                    value: v,
+                },
+            )
+            | (
+                Error::NotInUnitInterval { field, value },
+                Error::NotInUnitInterval {
+                    field: other,
+                    value: v,
+                },
+            ) => field == other && same(value, v),
+            (
+                Error::StaticBelowCoulomb {
+                    field,
+                    coulomb,
+                    value,
+                },
+                Error::StaticBelowCoulomb {
+                    field: other,
+                    coulomb: c,
+                    value: v,
+                },
+            ) => field == other && same(coulomb, c) && same(value, v),
+            (
+                Error::Element {
+                    field,
+                    index,
+                    value,
+                },
+                Error::Element {
+                    field: other,
+                    index: i,
+                    value: v,
+                },
+            )
+            | (
+                Error::NotFinite {
+                    field,
+                    index,
+                    value,
+                },
+                Error::NotFinite {
+                    field: other,
+                    index: i,
+                    value: v,
+                },
+            ) => field == other && index == i && same(value, v),
+            (Error::NoElements, Error::NoElements) => true,
+            (Error::ElementsTooWeak { sum, peak }, Error::ElementsTooWeak { sum: s, peak: p }) => {
+                same(sum, s) && same(peak, p)
+            }
+            (
+                Error::VelocityNotFinite { x, previous, dt },
+                Error::VelocityNotFinite {
+                    x: x2,
+                    previous: p,
+                    dt: d,
+                },
+            ) => same(x, x2) && same(previous, p) && same(dt, d),
+            (Error::Diverged { index }, Error::Diverged { index: i })
+            | (Error::Overflow { index }, Error::Overflow { index: i }) => index == i,
+            (
+                Error::TraceBelowInitial {
+                    parameters,
+                    initial_covariance,
+                    max_trace,
+                },
+                Error::TraceBelowInitial {
+                    parameters: p,
+                    initial_covariance: c,
+                    max_trace: m,
+                },
+            ) => parameters == p && same(initial_covariance, c) && same(max_trace, m),
+            (
+                Error::InputsOverflow { index, x, v, f },
+                Error::InputsOverflow {
+                    index: i,
+                    x: x2,
+                    v: v2,
+                    f: f2,
+                },
+            ) => index == i && same(x, x2) && same(v, v2) && same(f, f2),
+            (
+                Error::InputLengthMismatch {
+                    field,
+                    expected,
+                    got,
+                },
+                Error::InputLengthMismatch {
+                    field: other,
+                    expected: e,
+                    got: g,
+                },
+            ) => field == other && expected == e && got == g,
+            (
+                Error::LengthMismatch { expected, got },
+                Error::LengthMismatch {
+                    expected: e,
+                    got: g,
+                },
+            ) => expected == e && got == g,
+            _ => false,
+        }
+    }
+}
+
+impl Eq for Error {}
+
 impl core::error::Error for Error {}
+
+impl core::error::Error for InChannel {}

@@ -40,7 +40,7 @@ mod solver;
 mod stribeck;
 
 pub use compensator::{evaluation_bound, Compensator, Mode};
-pub use error::{Error, Field};
+pub use error::{Error, Field, InChannel, Shown};
 pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};

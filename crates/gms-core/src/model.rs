@@ -41,7 +41,7 @@ pub type LuGreParams = Params<Linear>;
 /// The state of one channel: deflection z, hysteresis memory, last position (for position input).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State<M> {
-    /// Average deflection of the asperity junctions z [m].
+    /// Average deflection of the asperity junctions z \[m\].
     pub z: f64,
     /// Memory of the hysteresis (ζ of each Maxwell-slip element).
     pub memory: M,
@@ -63,7 +63,10 @@ impl<H: Hysteresis> Params<H> {
         non_negative(sigma1, Field::sigma1)?;
         non_negative(sigma2, Field::sigma2)?;
         if hysteresis.max_force() <= stribeck.peak() {
-            return Err(Error::ElementsTooWeak);
+            return Err(Error::ElementsTooWeak {
+                sum: hysteresis.max_force(),
+                peak: stribeck.peak(),
+            });
         }
         Ok(Self {
             stribeck,
@@ -126,7 +129,7 @@ impl<H: Hysteresis> Params<H> {
         self.advance(state, v, dt, scheme)
     }
 
-    /// One step with position input `x`: v = (x − x_prev)/dt, and v = 0 on a fresh channel.
+    /// One step with position input `x`: v = (x − `x_prev`)/dt, and v = 0 on a fresh channel.
     pub fn step_position(
         &self,
         state: &mut State<H::Memory>,
@@ -271,6 +274,7 @@ impl<H: Hysteresis> Params<H> {
             return Err(Error::NotFinite {
                 field: Field::v,
                 index: 0,
+                value: v,
             });
         }
         let force = self.advance(state, v, dt, scheme)?;
@@ -317,7 +321,11 @@ fn run_block<M: Copy>(
 
 fn at_sample(error: Error, index: usize) -> Error {
     match error {
-        Error::NotFinite { field, .. } => Error::NotFinite { field, index },
+        Error::NotFinite { field, value, .. } => Error::NotFinite {
+            field,
+            index,
+            value,
+        },
         Error::Diverged { .. } => Error::Diverged { index },
         other => other,
     }

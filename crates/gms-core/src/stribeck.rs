@@ -14,7 +14,7 @@ pub struct Stribeck {
     vs: f64,
     delta: f64,
     /// Above these values of |v/Vs|^δ the Stribeck term is below half an ulp of Fc (resp.
-    /// Fc_neg): adding it cannot change g, so the exponential is skipped.
+    /// `Fc_neg`): adding it cannot change g, so the exponential is skipped.
     negligible: f64,
     negligible_neg: f64,
 }
@@ -26,6 +26,7 @@ impl Stribeck {
     }
 
     /// A curve whose levels for v < 0 are `fc_neg`, `fs_neg` (same rules as `fc`, `fs`).
+    #[allow(clippy::similar_names)] // the paper's pairs: fc and fs, fc_neg and fs_neg
     pub fn asymmetric(
         fc: f64,
         fs: f64,
@@ -41,10 +42,18 @@ impl Stribeck {
         positive(vs, Field::Vs)?;
         positive(delta, Field::delta)?;
         if fs < fc {
-            return Err(Error::StaticBelowCoulomb(Field::Fs));
+            return Err(Error::StaticBelowCoulomb {
+                field: Field::Fs,
+                coulomb: fc,
+                value: fs,
+            });
         }
         if fs_neg < fc_neg {
-            return Err(Error::StaticBelowCoulomb(Field::Fs_neg));
+            return Err(Error::StaticBelowCoulomb {
+                field: Field::Fs_neg,
+                coulomb: fc_neg,
+                value: fs_neg,
+            });
         }
         Ok(Self {
             fc,
@@ -83,7 +92,7 @@ impl Stribeck {
         self.delta
     }
 
-    /// The largest level the curve reaches, max(Fs, Fs_neg).
+    /// The largest level the curve reaches, max(Fs, `Fs_neg`).
     pub fn peak(&self) -> f64 {
         self.fs.max(self.fs_neg)
     }
@@ -142,7 +151,7 @@ mod tests {
     fn skipping_the_negligible_exponential_changes_nothing() {
         let curve = Stribeck::asymmetric(1.0, 1.5, 0.3, 7.0, 1e-3, 1.7).unwrap();
         for k in 0..4000 {
-            let v = (k as f64 - 2000.0) * 2e-5;
+            let v = (f64::from(k) - 2000.0) * 2e-5;
             let (fc, fs) = if v < 0.0 { (0.3, 7.0) } else { (1.0, 1.5) };
             let direct = fc + (fs - fc) * libm::exp(-libm::pow(libm::fabs(v / 1e-3), 1.7));
             assert_eq!(curve.g(v), direct, "v = {v}");
@@ -153,23 +162,40 @@ mod tests {
     fn rules_name_the_field() {
         assert_eq!(
             Stribeck::new(0.0, 1.0, 1.0, 1.0),
-            Err(Error::NotPositive(Field::Fc))
+            Err(Error::NotPositive {
+                field: Field::Fc,
+                value: 0.0
+            })
         );
         assert_eq!(
             Stribeck::new(2.0, 1.0, 1.0, 1.0),
-            Err(Error::StaticBelowCoulomb(Field::Fs))
+            Err(Error::StaticBelowCoulomb {
+                field: Field::Fs,
+                coulomb: 2.0,
+                value: 1.0
+            })
         );
         assert_eq!(
             Stribeck::new(1.0, 1.0, f64::NAN, 1.0),
-            Err(Error::NotPositive(Field::Vs))
+            Err(Error::NotPositive {
+                field: Field::Vs,
+                value: f64::NAN
+            })
         );
         assert_eq!(
             Stribeck::new(1.0, 1.0, 1.0, -1.0),
-            Err(Error::NotPositive(Field::delta))
+            Err(Error::NotPositive {
+                field: Field::delta,
+                value: -1.0
+            })
         );
         assert_eq!(
             Stribeck::asymmetric(1.0, 1.0, 1.0, 0.5, 1.0, 1.0),
-            Err(Error::StaticBelowCoulomb(Field::Fs_neg))
+            Err(Error::StaticBelowCoulomb {
+                field: Field::Fs_neg,
+                coulomb: 1.0,
+                value: 0.5
+            })
         );
     }
 }

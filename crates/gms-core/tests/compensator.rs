@@ -44,7 +44,7 @@ fn old_and_new(sigma1: f64) -> (LeuvenParams<4>, LeuvenParams<4>) {
 fn modes_are_the_model_stepped_at_the_fixed_dt() {
     let (params, _) = old_and_new(30.0);
     let velocity: Vec<f64> = (0..2000)
-        .map(|k| 5e-3 * (2e-3 * core::f64::consts::PI * k as f64).sin())
+        .map(|k| 5e-3 * (2e-3 * core::f64::consts::PI * f64::from(k)).sin())
         .collect();
     let mut feedforward = Compensator::new(params, DT, Mode::Feedforward).unwrap();
     let mut observer = Compensator::new(params, DT, Mode::Observer).unwrap();
@@ -73,6 +73,7 @@ fn modes_are_the_model_stepped_at_the_fixed_dt() {
 fn jumps(dt: f64, t_swap: f64, sigma1: f64) -> (f64, f64) {
     let (old, new) = old_and_new(sigma1);
     let velocity = |k: usize| 5e-3 * (2.0 * core::f64::consts::PI * k as f64 * dt).sin();
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // a small positive count
     let swap = (t_swap / dt).round() as usize;
     let mut compensator = Compensator::new(old, dt, Mode::Feedforward).unwrap();
     let mut naive = old.relaxed_state();
@@ -114,8 +115,8 @@ fn a_swap_has_no_jump_in_sliding_or_presliding() {
 }
 
 /// With σ1 > 0 the only change that does not vanish with dt is σ1·ż: at the swap, ż goes to
-/// v·(1 − (Fh/g_new(v))ⁿ) with Fh = g_old(v) carried over, so the change is at most
-/// σ1·|v|·|1 − (g_old/g_new)²| on top of the O(dt) change measured with σ1 = 0.
+/// v·(1 − (Fh/`g_new`(v))ⁿ) with Fh = `g_old`(v) carried over, so the change is at most
+/// σ1·|v|·|1 − (`g_old`/`g_new`)²| on top of the O(dt) change measured with σ1 = 0.
 #[test]
 fn with_micro_viscous_damping_only_sigma1_zdot_changes() {
     let (_, new) = old_and_new(30.0);
@@ -167,7 +168,7 @@ proptest! {
         prop_assert_eq!(after.last_position, state.last_position);
         prop_assert_eq!(compensator.params(), &new);
         for k in 0..10 {
-            let input = if observer { x + 1e-7 * k as f64 } else { 1e-4 };
+            let input = if observer { x + 1e-7 * f64::from(k) } else { 1e-4 };
             prop_assert!(compensator.step(input).unwrap().is_finite());
         }
     }

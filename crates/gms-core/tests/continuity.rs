@@ -50,6 +50,7 @@ struct Run {
 }
 
 fn run(params: &LeuvenParams<4>, dt: f64, scheme: Scheme) -> Run {
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // a small positive count
     let steps = (DURATION / dt).round() as usize;
     let mut state = params.relaxed_state();
     let mut run = Run {

@@ -32,7 +32,7 @@ trait DocumentedBound {
 
 impl<const N: usize> DocumentedBound for MaxwellSlip<N> {
     fn iteration_bound(&self) -> u32 {
-        2 * N as u32 + 1
+        2 * u32::try_from(N).expect("few elements") + 1
     }
 }
 
@@ -167,7 +167,7 @@ fn sweep<const N: usize>(n: f64) -> u32 {
     let mut state = params.relaxed_state();
     let mut worst = 0;
     for k in 0..40 {
-        let t = k as f64 / 40.0;
+        let t = f64::from(k) / 40.0;
         let v = 1e-2 * (-3.0 * t).exp() * (2.0 * core::f64::consts::PI * 3.0 * t).sin();
         params
             .step(&mut state, v, 1e-3, Scheme::Implicit)

@@ -82,16 +82,16 @@ proptest! {
 
         prop_assert_eq!(
             params.step(&mut state, bad, dt, scheme),
-            Err(Error::NotFinite { field: Field::v, index: 0 })
+            Err(Error::NotFinite { field: Field::v, index: 0, value: bad })
         );
-        prop_assert_eq!(params.step(&mut state, good, bad_dt, scheme), Err(Error::NotPositive(Field::dt)));
+        prop_assert_eq!(params.step(&mut state, good, bad_dt, scheme), Err(Error::NotPositive { field: Field::dt, value: bad_dt }));
         prop_assert_eq!(
             params.step_position(&mut state, bad, dt, scheme),
-            Err(Error::NotFinite { field: Field::x, index: 0 })
+            Err(Error::NotFinite { field: Field::x, index: 0, value: bad })
         );
         prop_assert_eq!(
             params.step_position(&mut state, good, bad_dt, scheme),
-            Err(Error::NotPositive(Field::dt))
+            Err(Error::NotPositive { field: Field::dt, value: bad_dt })
         );
         prop_assert_eq!(bits(&state), before);
     }
@@ -112,21 +112,21 @@ proptest! {
 
         prop_assert_eq!(
             params.simulate(&mut state, &block, dt, scheme, &mut out),
-            Err(Error::NotFinite { field: Field::v, index: first })
+            Err(Error::NotFinite { field: Field::v, index: first, value: block[first] })
         );
         prop_assert_eq!(
             params.simulate_position(&mut state, &block, dt, scheme, &mut out),
-            Err(Error::NotFinite { field: Field::x, index: first })
+            Err(Error::NotFinite { field: Field::x, index: first, value: block[first] })
         );
 
         let finite: Vec<f64> = block.iter().map(|&x| if x.is_finite() { x } else { 0.0 }).collect();
         prop_assert_eq!(
             params.simulate(&mut state, &finite, bad_dt, scheme, &mut out),
-            Err(Error::NotPositive(Field::dt))
+            Err(Error::NotPositive { field: Field::dt, value: bad_dt })
         );
         prop_assert_eq!(
             params.simulate_position(&mut state, &finite, bad_dt, scheme, &mut out),
-            Err(Error::NotPositive(Field::dt))
+            Err(Error::NotPositive { field: Field::dt, value: bad_dt })
         );
 
         if wrong_len != len {
@@ -320,7 +320,8 @@ fn overflowing_position_difference_is_reported() {
         params.step_position(&mut state, f64::MAX, 1e-3, Scheme::Implicit),
         Err(Error::NotFinite {
             field: Field::v,
-            index: 0
+            index: 0,
+            value: f64::INFINITY
         })
     );
     assert_eq!(bits(&state), before);
@@ -337,7 +338,8 @@ fn overflowing_position_difference_is_reported() {
         ),
         Err(Error::NotFinite {
             field: Field::v,
-            index: 1
+            index: 1,
+            value: f64::INFINITY
         })
     );
     assert_eq!(bits(&fresh), bits(&params.relaxed_state()));

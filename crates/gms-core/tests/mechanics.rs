@@ -244,22 +244,35 @@ fn bad_parameters_name_the_field() {
     for mass in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert_eq!(
             MassSystem::new(params, mass, Spring::NONE),
-            Err(Error::NotPositive(Field::mass))
+            Err(Error::NotPositive {
+                field: Field::mass,
+                value: mass
+            })
         );
     }
     for stiffness in [-1.0, f64::NAN, f64::INFINITY] {
         assert_eq!(
             Spring::ground(stiffness),
-            Err(Error::Negative(Field::stiffness))
+            Err(Error::Negative {
+                field: Field::stiffness,
+                value: stiffness
+            })
         );
     }
     assert_eq!(
         Spring::dragged(1.0, f64::NAN),
-        Err(Error::NotFiniteValue(Field::drive_speed))
+        Err(Error::NotFiniteValue {
+            field: Field::drive_speed,
+            value: f64::NAN
+        })
     );
     assert_eq!(
-        Error::NotFiniteValue(Field::drive_speed).to_string(),
-        "`drive_speed` must be finite"
+        Error::NotFiniteValue {
+            field: Field::drive_speed,
+            value: f64::NAN
+        }
+        .to_string(),
+        "`drive_speed` must be finite, got nan"
     );
 }
 
@@ -279,14 +292,18 @@ fn bad_inputs_are_reported_and_leave_the_state_untouched() {
     for dt in [0.0, -1e-3, f64::NAN] {
         assert_eq!(
             system.step(&mut state, 0.1, dt, Scheme::Implicit),
-            Err(Error::NotPositive(Field::dt))
+            Err(Error::NotPositive {
+                field: Field::dt,
+                value: dt
+            })
         );
     }
     assert_eq!(
         system.step(&mut state, f64::NAN, 1e-3, Scheme::Implicit),
         Err(Error::NotFinite {
             field: Field::u,
-            index: 0
+            index: 0,
+            value: f64::NAN
         })
     );
     let u = [0.1, 0.2, 0.3, f64::INFINITY, 0.5];
@@ -306,7 +323,8 @@ fn bad_inputs_are_reported_and_leave_the_state_untouched() {
         result,
         Err(Error::NotFinite {
             field: Field::u,
-            index: 3
+            index: 3,
+            value: f64::INFINITY
         })
     );
     let mut short = [0.0; 4];
@@ -339,7 +357,9 @@ fn a_block_run_equals_single_steps() {
         Spring::dragged(200.0, 1e-3).unwrap(),
     )
     .unwrap();
-    let u: Vec<f64> = (0..500).map(|k| 2.0 * (k as f64 * 0.02).sin()).collect();
+    let u: Vec<f64> = (0..500)
+        .map(|k| 2.0 * (f64::from(k) * 0.02).sin())
+        .collect();
     let (mut f, mut x, mut v) = (vec![0.0; 500], vec![0.0; 500], vec![0.0; 500]);
     let mut block = system.state_at(0.0, 0.0);
     system

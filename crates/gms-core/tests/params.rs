@@ -17,7 +17,7 @@
 mod common;
 
 use common::{log_uniform, saturation_forces, stribeck};
-use gms_core::{Error, Field, Linear, MaxwellSlip, Params, Stribeck};
+use gms_core::{Error, Field, Hysteresis, Linear, MaxwellSlip, Params, Stribeck};
 use proptest::array::uniform;
 use proptest::prelude::*;
 
@@ -79,7 +79,11 @@ fn stribeck_levels_must_be_positive() {
             ),
         ];
         for (result, field) in cases {
-            assert_eq!(result, Err(Error::NotPositive(field)), "{field} = {bad}");
+            assert_eq!(
+                result,
+                Err(Error::NotPositive { field, value: bad }),
+                "{field} = {bad}"
+            );
         }
     }
 }
@@ -89,11 +93,19 @@ fn static_levels_must_not_be_below_coulomb() {
     let below = 1.0 - f64::EPSILON;
     assert_eq!(
         Stribeck::new(1.0, below, 1e-3, 2.0),
-        Err(Error::StaticBelowCoulomb(Field::Fs))
+        Err(Error::StaticBelowCoulomb {
+            field: Field::Fs,
+            coulomb: 1.0,
+            value: below
+        })
     );
     assert_eq!(
         Stribeck::asymmetric(1.0, 1.5, 1.0, below, 1e-3, 2.0),
-        Err(Error::StaticBelowCoulomb(Field::Fs_neg))
+        Err(Error::StaticBelowCoulomb {
+            field: Field::Fs_neg,
+            coulomb: 1.0,
+            value: below
+        })
     );
     // Equality is allowed: no Stribeck bump.
     let flat = Stribeck::asymmetric(1.0, 1.0, 0.5, 0.5, 1e-3, 2.0).expect("Fs = Fc is valid");
@@ -112,7 +124,8 @@ fn elements_must_be_positive_and_present() {
                 MaxwellSlip::new(w, [1e-6; 3]),
                 Err(Error::Element {
                     field: Field::W,
-                    index
+                    index,
+                    value: bad
                 }),
                 "W[{index}] = {bad}"
             );
@@ -122,7 +135,8 @@ fn elements_must_be_positive_and_present() {
                 MaxwellSlip::new([1.0; 3], delta),
                 Err(Error::Element {
                     field: Field::Delta,
-                    index
+                    index,
+                    value: bad
                 }),
                 "Delta[{index}] = {bad}"
             );
@@ -133,7 +147,8 @@ fn elements_must_be_positive_and_present() {
         MaxwellSlip::new([1.0, 2.0], [1e-6, 1e-310]),
         Err(Error::Element {
             field: Field::Delta,
-            index: 1
+            index: 1,
+            value: 1e-310
         })
     );
     assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));
@@ -144,7 +159,10 @@ fn linear_stiffness_must_be_positive() {
     for bad in NOT_POSITIVE {
         assert_eq!(
             Linear::new(bad),
-            Err(Error::NotPositive(Field::sigma0)),
+            Err(Error::NotPositive {
+                field: Field::sigma0,
+                value: bad
+            }),
             "sigma0 = {bad}"
         );
     }
@@ -155,18 +173,27 @@ fn model_coefficients_follow_their_rules() {
     for bad in NOT_POSITIVE {
         assert_eq!(
             Params::new(curve(), bad, 1.0, 1.0, elements()),
-            Err(Error::NotPositive(Field::n))
+            Err(Error::NotPositive {
+                field: Field::n,
+                value: bad
+            })
         );
     }
     for bad in NEGATIVE {
         assert_eq!(
             Params::new(curve(), 1.0, bad, 1.0, elements()),
-            Err(Error::Negative(Field::sigma1)),
+            Err(Error::Negative {
+                field: Field::sigma1,
+                value: bad
+            }),
             "sigma1 = {bad}"
         );
         assert_eq!(
             Params::new(curve(), 1.0, 1.0, bad, elements()),
-            Err(Error::Negative(Field::sigma2)),
+            Err(Error::Negative {
+                field: Field::sigma2,
+                value: bad
+            }),
             "sigma2 = {bad}"
         );
     }
@@ -189,7 +216,10 @@ proptest! {
     ) {
         let peak = stribeck.fs().max(stribeck.fs_neg());
         let too_weak = MaxwellSlip::new(saturation_forces(weights, peak, weak), delta).expect("valid elements");
-        prop_assert_eq!(Params::new(stribeck, 1.0, 1.0, 1.0, too_weak), Err(Error::ElementsTooWeak));
+        prop_assert_eq!(
+            Params::new(stribeck, 1.0, 1.0, 1.0, too_weak),
+            Err(Error::ElementsTooWeak { sum: too_weak.max_force(), peak })
+        );
         let strong_enough = MaxwellSlip::new(saturation_forces(weights, peak, strong), delta).expect("valid elements");
         prop_assert!(Params::new(stribeck, 1.0, 1.0, 1.0, strong_enough).is_ok());
         // A linear spring has no saturation: never too weak.
@@ -203,12 +233,18 @@ fn elements_exactly_at_the_static_level_are_too_weak() {
     let at_fs = MaxwellSlip::new([1.0, 0.5], [1e-6, 2e-6]).expect("valid elements");
     assert_eq!(
         Params::new(curve(), 1.0, 0.0, 0.0, at_fs),
-        Err(Error::ElementsTooWeak)
+        Err(Error::ElementsTooWeak {
+            sum: 1.5,
+            peak: 1.5
+        })
     );
     let reversed = Stribeck::asymmetric(0.8, 1.2, 1.0, 1.5, 1e-3, 2.0).expect("valid curve");
     assert_eq!(
         Params::new(reversed, 1.0, 0.0, 0.0, at_fs),
-        Err(Error::ElementsTooWeak)
+        Err(Error::ElementsTooWeak {
+            sum: 1.5,
+            peak: 1.5
+        })
     );
     let above = MaxwellSlip::new([1.0, 0.5 + 1e-12], [1e-6, 2e-6]).expect("valid elements");
     assert!(Params::new(reversed, 1.0, 0.0, 0.0, above).is_ok());
@@ -220,11 +256,23 @@ fn messages_name_the_key() {
         let key = field.key();
         assert_eq!(field.to_string(), key);
         let errors = [
-            Error::NotPositive(field),
-            Error::Negative(field),
-            Error::StaticBelowCoulomb(field),
-            Error::Element { field, index: 3 },
-            Error::NotFinite { field, index: 3 },
+            Error::NotPositive { field, value: -1.0 },
+            Error::Negative { field, value: -1.0 },
+            Error::StaticBelowCoulomb {
+                field,
+                coulomb: 1.0,
+                value: 0.5,
+            },
+            Error::Element {
+                field,
+                index: 3,
+                value: f64::NAN,
+            },
+            Error::NotFinite {
+                field,
+                index: 3,
+                value: f64::INFINITY,
+            },
         ];
         for error in errors {
             let message = error.to_string();
@@ -234,6 +282,81 @@ fn messages_name_the_key() {
             );
         }
     }
+}
+
+/// The messages carry the value, spelled as Python prints floats, and the channel when given.
+#[test]
+fn messages_carry_the_value() {
+    let cases = [
+        (
+            Error::NotPositive {
+                field: Field::dt,
+                value: 0.0,
+            },
+            "`dt` must be finite and > 0, got 0.0",
+        ),
+        (
+            Error::NotPositive {
+                field: Field::Fc,
+                value: 1e-310,
+            },
+            "`Fc` must be finite and > 0, got 1e-310 (a subnormal number: at least 2.2e-308 is \
+             needed)",
+        ),
+        (
+            Error::Negative {
+                field: Field::sigma1,
+                value: f64::NAN,
+            },
+            "`sigma1` must be finite and >= 0, got nan",
+        ),
+        (
+            Error::StaticBelowCoulomb {
+                field: Field::Fs_neg,
+                coulomb: 0.8,
+                value: 0.5,
+            },
+            "`Fs_neg` must be >= `Fc_neg` = 0.8, got 0.5",
+        ),
+        (
+            Error::Element {
+                field: Field::W,
+                index: 2,
+                value: f64::NEG_INFINITY,
+            },
+            "`W[2]` must be finite and > 0, got -inf",
+        ),
+        (
+            Error::ElementsTooWeak {
+                sum: 1.0,
+                peak: 1.5,
+            },
+            "`sum(W)` must be > max(`Fs`, `Fs_neg`) = 1.5, got sum(W) = 1.0: the hysteresis force \
+             could never balance the Stribeck curve",
+        ),
+        (
+            Error::NotFinite {
+                field: Field::v,
+                index: 4,
+                value: f64::INFINITY,
+            },
+            "`v` must be finite, got inf at sample 4",
+        ),
+    ];
+    for (error, message) in cases {
+        assert_eq!(error.to_string(), message);
+    }
+    assert_eq!(
+        Error::Diverged { index: 5 }.in_channel(1).to_string(),
+        "the explicit step diverged at channel 1, sample 5: dt is too large for the stiffness; \
+         use the implicit scheme"
+    );
+    // Not about a sample: the channel adds nothing.
+    let dt = Error::NotPositive {
+        field: Field::dt,
+        value: -1.0,
+    };
+    assert_eq!(dt.in_channel(3).to_string(), dt.to_string());
 }
 
 /// The error is a small value: `Copy`, comparable, and a `core::error::Error`.

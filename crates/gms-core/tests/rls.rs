@@ -69,8 +69,8 @@ fn noise(samples: usize, mut seed: u64) -> Vec<f64> {
     (0..samples)
         .map(|_| {
             seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
             2.0 * ((seed >> 11) as f64 / (1u64 << 53) as f64) - 1.0
         })
         .collect()
@@ -162,12 +162,12 @@ fn weighted_ridge(
     forgetting: f64,
     initial_covariance: f64,
 ) -> SVector<f64, P> {
-    let samples = rows.len() as i32;
+    let samples = i32::try_from(rows.len()).expect("a short log");
     let prior = forgetting.powi(samples) / initial_covariance;
     let mut normal = SMatrix::<f64, P, P>::from_diagonal_element(prior);
     let mut right = SVector::<f64, P>::zeros();
     for (k, (row, &y)) in rows.iter().zip(y).enumerate() {
-        let weight = forgetting.powi(samples - 1 - k as i32);
+        let weight = forgetting.powi(samples - 1 - i32::try_from(k).expect("a short log"));
         let phi = SVector::from(*row);
         normal += phi * phi.transpose() * weight;
         right += phi * (y * weight);
@@ -327,7 +327,7 @@ fn rejected_input_leaves_everything_untouched() {
     let mut identifier =
         OnlineIdentifier::<N, P>::new(delta, [0.0; P], settings(0.999, 1e3)).unwrap();
     for k in 0..50 {
-        let x = 3e-6 * (k as f64 * 0.3).sin();
+        let x = 3e-6 * (f64::from(k) * 0.3).sin();
         identifier.update(x, 1e-3, 0.5).unwrap();
     }
     let before = identifier;
@@ -338,14 +338,26 @@ fn rejected_input_leaves_everything_untouched() {
     ] {
         assert_eq!(
             identifier.update(x, v, f),
-            Err(Error::NotFinite { field, index: 0 })
+            Err(Error::NotFinite {
+                field,
+                index: 0,
+                value: [x, v, f][[Field::x, Field::v, Field::f]
+                    .iter()
+                    .position(|&named| named == field)
+                    .unwrap()]
+            })
         );
         assert_eq!(identifier, before);
     }
     // Finite but absurd: 1e300 m/s in the viscous column overflows φᵀPφ.
     assert_eq!(
         identifier.update(0.0, 1e300, 1.0),
-        Err(Error::Overflow { index: 0 })
+        Err(Error::InputsOverflow {
+            index: 0,
+            x: 0.0,
+            v: 1e300,
+            f: 1.0
+        })
     );
     assert_eq!(identifier, before);
 
@@ -357,12 +369,18 @@ fn rejected_input_leaves_everything_untouched() {
         identifier.run(&x, &v, &[0.5; 4], &mut out),
         Err(Error::NotFinite {
             field: Field::v,
-            index: 2
+            index: 2,
+            value: f64::NAN
         })
     );
     assert_eq!(
         identifier.run(&x, &[1e-3, 1e-3, 1e300, 1e-3], &[0.5; 4], &mut out),
-        Err(Error::Overflow { index: 2 })
+        Err(Error::InputsOverflow {
+            index: 2,
+            x: 2e-6,
+            v: 1e300,
+            f: 0.5
+        })
     );
     assert_eq!(identifier, before);
     assert_eq!(
@@ -412,7 +430,8 @@ fn construction_rules() {
         OnlineIdentifier::<N, P>::new([1e-6, 0.0, 1e-6, 1e-6], [0.0; P], good),
         Err(Error::Element {
             field: Field::Delta,
-            index: 1
+            index: 1,
+            value: 0.0
         })
     );
     assert_eq!(
@@ -424,10 +443,18 @@ fn construction_rules() {
                 ..good
             }
         ),
-        Err(Error::TraceBelowInitial)
+        Err(Error::TraceBelowInitial {
+            parameters: P,
+            initial_covariance: 1e3,
+            max_trace: 1.0
+        })
     );
     assert_eq!(
-        Error::NotInUnitInterval(Field::forgetting).to_string(),
-        "`forgetting` must be in (0, 1]"
+        Error::NotInUnitInterval {
+            field: Field::forgetting,
+            value: 1.5
+        }
+        .to_string(),
+        "`forgetting` must be in (0, 1], got 1.5"
     );
 }

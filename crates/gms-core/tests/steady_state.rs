@@ -53,7 +53,10 @@ fn steps_to_settle<const N: usize>(
     // is the hysteresis error plus the micro-viscous term sigma1·Δz/dt.
     let g = params.stribeck().g(v);
     let initial = (stiffness + params.sigma1() / dt) * reach + g;
-    ((initial / (1e-11 * g)).ln() / -contraction.ln()).ceil() as usize + 2
+    let steps = ((initial / (1e-11 * g)).ln() / -contraction.ln()).ceil();
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // a small positive count
+    let steps = steps as usize;
+    steps + 2
 }
 
 /// The Stribeck curve, n, sigma1 and sigma2 of a case.

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{config, dt, leuven, scheme, velocities};
-use gms_core::{Error, Field, MaxwellSlip, Params, SlipRegressor, Stribeck};
+use gms_core::{Error, Field, MaxwellSlip, Params, Scheme, SlipRegressor, Stribeck};
 use proptest::prelude::*;
 
 /// Positions that visit presliding and sliding: the running sum of a velocity sequence.
@@ -72,7 +72,7 @@ fn deflection_run_is_all_or_nothing() {
             &mut state,
             &[0.0, 1e-6, 2e-6],
             1e-3,
-            Default::default(),
+            Scheme::default(),
             &mut force,
             &mut z,
         )
@@ -83,7 +83,7 @@ fn deflection_run_is_all_or_nothing() {
             &mut state,
             &[3e-6, f64::NAN, 4e-6],
             1e-3,
-            Default::default(),
+            Scheme::default(),
             &mut force,
             &mut z,
         )
@@ -92,7 +92,8 @@ fn deflection_run_is_all_or_nothing() {
         error,
         Error::NotFinite {
             field: Field::x,
-            index: 1
+            index: 1,
+            value: f64::NAN
         }
     );
     assert_eq!(state, before);
@@ -101,7 +102,7 @@ fn deflection_run_is_all_or_nothing() {
             &mut state,
             &[3e-6, 4e-6],
             1e-3,
-            Default::default(),
+            Scheme::default(),
             &mut [0.0; 2],
             &mut z,
         )
@@ -127,7 +128,8 @@ fn responses_are_all_or_nothing() {
         regressor.responses(&[1e-6, f64::INFINITY], &mut out),
         Err(Error::NotFinite {
             field: Field::x,
-            index: 1
+            index: 1,
+            value: f64::INFINITY
         })
     );
     assert_eq!(regressor, before);

@@ -111,7 +111,9 @@ fn most_evaluations(mode: Mode, inputs: &[f64]) -> u32 {
 }
 
 fn quantile(sorted: &[f64], q: f64) -> f64 {
-    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // an index in 0..len
+    let index = ((sorted.len() - 1) as f64 * q).round() as usize;
+    sorted[index]
 }
 
 fn main() {

@@ -22,22 +22,29 @@
 //! (its size depends on the number of elements, chosen at run time); `step`, `set_params`,
 //! `reset` and `output` never allocate, and gms-core never panics.
 //!
-//! All `unsafe` of the crate is in this file: dereferencing the caller's pointers, each behind
-//! the checks of [`checked`] and [`checked_mut`], and turning the boxed compensator into a
-//! handle and back.
+//! The compensator itself, with its number of elements chosen at run time, is gms-dyn's
+//! [`Compensator`], the same one the Python package uses; this crate only
+//! checks pointers and turns errors into status codes.
+//!
+//! All `unsafe` of the workspace is in this file: dereferencing the caller's pointers, each
+//! behind the checks of `checked` and `checked_mut`, and turning the boxed compensator into
+//! a handle and back.
 #![allow(non_camel_case_types)] // C names: leuven_rt_params, leuven_rt_status, ...
-#![allow(non_snake_case)] // the paper's parameter names: Fc, Fs, W, Delta, ...
-
-mod axis;
+#![allow(non_snake_case)]
+// the paper's parameter names: Fc, Fs, W, Delta, ...
+// The doc comments are also the comments of the C header, where units read [m], [s], [N].
+#![allow(rustdoc::broken_intra_doc_links)]
 
 use core::ffi::{c_char, CStr};
 
 use gms_core::{Error, Field, Mode};
-
-pub use axis::{build, Axis, Spec, SpecError};
+use gms_dyn::{Compensator, HysteresisKind, RawElements, RawParams};
 
 /// The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
+
+// The header spells the number out; it must be gms-dyn's.
+const _: () = assert!(LEUVEN_RT_MAX_ELEMENTS == gms_dyn::MAX_ELEMENTS);
 
 /// `mode` of `leuven_rt_compensator_create`: each sample's input is the desired velocity [m/s]
 /// and the output the friction feedforward along the planned motion.
@@ -72,7 +79,11 @@ pub enum leuven_rt_status {
     LEUVEN_RT_STEP_FAILED = 7,
 }
 
-use leuven_rt_status::*;
+use leuven_rt_status::{
+    LEUVEN_RT_INCOMPATIBLE_PARAMS, LEUVEN_RT_INVALID_DT, LEUVEN_RT_INVALID_MODE,
+    LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_INVALID_POINTER, LEUVEN_RT_NOT_FINITE_INPUT,
+    LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
+};
 
 /// Parameters of the modified Leuven model (DESIGN.md §2), SI units.
 ///
@@ -125,7 +136,7 @@ pub struct leuven_rt_error {
 
 /// One axis of friction compensation (opaque).
 pub struct leuven_rt_compensator {
-    axis: Box<dyn Axis>,
+    compensator: Compensator,
 }
 
 /// A short English description of `status` (a static string; never null).
@@ -171,12 +182,15 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
         _ => return LEUVEN_RT_INVALID_MODE,
     };
     // SAFETY: as above, for `params` and the arrays it points to.
-    let Some(spec) = (unsafe { spec(params) }) else {
+    let Some(raw) = (unsafe { raw_params(params) }) else {
         return LEUVEN_RT_INVALID_POINTER;
     };
-    match build(&spec, dt, mode) {
-        Ok(axis) => {
-            *out = Box::into_raw(Box::new(leuven_rt_compensator { axis }));
+    let built = raw
+        .validate()
+        .and_then(|set| Compensator::new(&set, dt, mode));
+    match built {
+        Ok(compensator) => {
+            *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
             LEUVEN_RT_OK
         }
         // SAFETY: as above, for `error`.
@@ -222,15 +236,17 @@ pub unsafe extern "C" fn leuven_rt_compensator_step(
         *force = 0.0;
         return LEUVEN_RT_INVALID_POINTER;
     };
-    match compensator.axis.step(input) {
+    match compensator.compensator.step(input) {
         Ok(value) => {
             *force = value;
             LEUVEN_RT_OK
         }
         Err(error) => {
-            *force = compensator.axis.output();
+            *force = compensator.compensator.output();
             match error {
-                Error::NotFinite { .. } => LEUVEN_RT_NOT_FINITE_INPUT,
+                Error::NotFinite { .. } | Error::VelocityNotFinite { .. } => {
+                    LEUVEN_RT_NOT_FINITE_INPUT
+                }
                 _ => LEUVEN_RT_STEP_FAILED,
             }
         }
@@ -251,12 +267,12 @@ pub unsafe extern "C" fn leuven_rt_compensator_set_params(
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
     // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (Some(compensator), Some(spec)) =
-        (unsafe { checked_mut(compensator) }, unsafe { spec(params) })
-    else {
+    let (Some(compensator), Some(raw)) = (unsafe { checked_mut(compensator) }, unsafe {
+        raw_params(params)
+    }) else {
         return LEUVEN_RT_INVALID_POINTER;
     };
-    match compensator.axis.set_params(&spec) {
+    match compensator.compensator.set_raw_params(&raw) {
         Ok(()) => LEUVEN_RT_OK,
         // SAFETY: as above, for `error`.
         Err(reason) => report(reason, unsafe { checked_mut(error) }),
@@ -274,7 +290,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_reset(
     // SAFETY: the caller passes null or a valid pointer (the function's contract).
     match unsafe { checked_mut(compensator) } {
         Some(compensator) => {
-            compensator.axis.reset();
+            compensator.compensator.reset();
             LEUVEN_RT_OK
         }
         None => LEUVEN_RT_INVALID_POINTER,
@@ -293,7 +309,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_output(
     // SAFETY: the caller passes null or valid pointers (the function's contract).
     match unsafe { (checked(compensator), checked_mut(force)) } {
         (Some(compensator), Some(force)) => {
-            *force = compensator.axis.output();
+            *force = compensator.compensator.output();
             LEUVEN_RT_OK
         }
         _ => LEUVEN_RT_INVALID_POINTER,
@@ -346,60 +362,74 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
     Some(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// The caller's parameters as a [`Spec`], or `None` for a null or misaligned pointer.
+/// The caller's parameters as plain values, or `None` for a null or misaligned pointer.
 ///
-/// With more than `LEUVEN_RT_MAX_ELEMENTS` elements, only `LEUVEN_RT_MAX_ELEMENTS + 1` values are read, which is
-/// enough for [`build`] to refuse the count.
+/// `elements = 0` means linear hysteresis `sigma0`; otherwise a non-zero `sigma0` is given
+/// alongside the elements (and refused by validation). `Fc_neg` and `Fs_neg` of 0 mean "same
+/// as `Fc` and `Fs`". With more than `LEUVEN_RT_MAX_ELEMENTS` elements, only
+/// `LEUVEN_RT_MAX_ELEMENTS + 1` values are read, which is enough to refuse the count.
 ///
 /// # Safety
 /// As [`checked`] for `params`, and as [`array`] for its `W` and `Delta`.
-unsafe fn spec<'a>(params: *const leuven_rt_params) -> Option<Spec<'a>> {
+unsafe fn raw_params<'a>(params: *const leuven_rt_params) -> Option<RawParams<'a>> {
     // SAFETY: passed on from the caller's contract.
     let params = unsafe { checked(params) }?;
     // SAFETY: passed on from the caller's contract.
-    let (w, big_delta) = unsafe {
+    let (w, delta) = unsafe {
         (
             array(params.W, params.elements)?,
             array(params.Delta, params.elements)?,
         )
     };
-    Some(Spec {
+    let or = |value: f64, default: f64| if value == 0.0 { default } else { value };
+    let linear = params.elements == 0;
+    Some(RawParams {
         fc: params.Fc,
         fs: params.Fs,
-        fc_neg: params.Fc_neg,
-        fs_neg: params.Fs_neg,
         vs: params.Vs,
         delta: params.delta,
         n: params.n,
         sigma1: params.sigma1,
         sigma2: params.sigma2,
-        sigma0: params.sigma0,
-        w,
-        big_delta,
+        fc_neg: or(params.Fc_neg, params.Fc),
+        fs_neg: or(params.Fs_neg, params.Fs),
+        sigma0: (linear || params.sigma0 != 0.0).then_some(params.sigma0),
+        elements: (!linear).then_some(RawElements { w, delta }),
     })
 }
 
 /// The status of a refused parameter set, with the detail written where the caller wants it.
-fn report(reason: SpecError, detail: Option<&mut leuven_rt_error>) -> leuven_rt_status {
+fn report(reason: gms_dyn::Error, detail: Option<&mut leuven_rt_error>) -> leuven_rt_status {
+    use gms_dyn::Error as Refused;
     let (status, field, index) = match reason {
-        SpecError::Invalid(Error::NotPositive(Field::dt)) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
-        SpecError::Invalid(Error::Element { field, index }) => {
+        Refused::Core(Error::NotPositive {
+            field: Field::dt, ..
+        }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
+        Refused::Core(Error::Element { field, index, .. }) => {
             (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
         }
-        SpecError::Invalid(Error::NotPositive(field) | Error::Negative(field)) => {
-            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0)
-        }
-        SpecError::Invalid(Error::StaticBelowCoulomb(field)) => {
-            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0)
-        }
+        Refused::Core(
+            Error::NotPositive { field, .. }
+            | Error::Negative { field, .. }
+            | Error::StaticBelowCoulomb { field, .. },
+        ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0),
         // sum(W) <= max(Fs, Fs_neg): the elements are too weak.
-        SpecError::Invalid(Error::ElementsTooWeak) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
-        SpecError::Invalid(_) => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
-        SpecError::BothHysteresis => (LEUVEN_RT_INVALID_PARAMETER, c"sigma0", 0),
-        SpecError::TooManyElements(_) => (LEUVEN_RT_INVALID_PARAMETER, c"elements", 0),
-        SpecError::Incompatible { expected, .. } => {
-            (LEUVEN_RT_INCOMPATIBLE_PARAMS, c"elements", expected)
+        Refused::Core(Error::ElementsTooWeak { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
+        Refused::BothHysteresis | Refused::NeitherHysteresis => {
+            (LEUVEN_RT_INVALID_PARAMETER, c"sigma0", 0)
         }
+        Refused::EmptyElements
+        | Refused::TooManyElements { .. }
+        | Refused::ElementLengths { .. } => (LEUVEN_RT_INVALID_PARAMETER, c"elements", 0),
+        Refused::Incompatible { expected, .. } => (
+            LEUVEN_RT_INCOMPATIBLE_PARAMS,
+            c"elements",
+            match expected {
+                HysteresisKind::Linear => 0,
+                HysteresisKind::Maxwell { elements } => elements,
+            },
+        ),
+        _ => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
     };
     if let Some(detail) = detail {
         *detail = leuven_rt_error {

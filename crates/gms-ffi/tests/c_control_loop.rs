@@ -23,6 +23,15 @@ const KD: f64 = 80.0;
 const AMPLITUDE: f64 = 2e-4;
 const FREQUENCY: f64 = 2.0;
 
+// The status codes as C sees them, from the crate's own enum.
+const OK: i32 = LEUVEN_RT_OK as i32;
+const INVALID_POINTER: i32 = LEUVEN_RT_INVALID_POINTER as i32;
+const INVALID_PARAMETER: i32 = LEUVEN_RT_INVALID_PARAMETER as i32;
+const INVALID_DT: i32 = LEUVEN_RT_INVALID_DT as i32;
+const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
+const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
+const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
+
 fn params(fc: f64, fs: f64, vs: f64, w: [f64; 10], delta: [f64; 10]) -> LeuvenParams<10> {
     let stribeck = Stribeck::new(fc, fs, vs, 2.0).unwrap();
     Params::new(
@@ -95,7 +104,7 @@ fn library_dir() -> PathBuf {
     dir.to_path_buf()
 }
 
-/// Compiles control_loop.c with gcc, linked statically or dynamically, and returns its output.
+/// Compiles `control_loop.c` with gcc, linked statically or dynamically, and returns its output.
 fn compile_and_run(shared: bool) -> String {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let libraries = library_dir();
@@ -220,14 +229,6 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     eprintln!("largest relative difference C vs Rust: {largest:e}");
 
     // Bad input: (status, field, index) for each case.
-    // The status codes as C sees them, from the crate's own enum.
-    const OK: i32 = LEUVEN_RT_OK as i32;
-    const INVALID_POINTER: i32 = LEUVEN_RT_INVALID_POINTER as i32;
-    const INVALID_PARAMETER: i32 = LEUVEN_RT_INVALID_PARAMETER as i32;
-    const INVALID_DT: i32 = LEUVEN_RT_INVALID_DT as i32;
-    const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
-    const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
-    const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
     let expected: &[(&str, i32, &str, usize)] = &[
         ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
         ("nan_observer", NOT_FINITE_INPUT, "-", 0),

@@ -4,7 +4,7 @@ use gms_core::Scheme;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat};
 
-use crate::errors::{dt_error, InputError};
+use crate::errors::InputError;
 
 /// A Python real number as f64: floats on the fast path (the `step` calls of the control loop),
 /// then ints and numpy scalars; bools and everything else are refused with an `InputError`
@@ -25,16 +25,6 @@ pub fn real(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
     )))
 }
 
-/// A step size that is finite and > 0.
-#[inline]
-pub fn check_dt(dt: f64) -> PyResult<f64> {
-    if dt.is_finite() && dt >= f64::MIN_POSITIVE {
-        Ok(dt)
-    } else {
-        Err(dt_error(dt))
-    }
-}
-
 /// A channel count of at least 1.
 pub fn channel_count(channels: i64) -> PyResult<usize> {
     if channels < 1 {
@@ -42,7 +32,8 @@ pub fn channel_count(channels: i64) -> PyResult<usize> {
             "`channels` must be >= 1, got {channels}"
         )));
     }
-    Ok(channels as usize)
+    usize::try_from(channels)
+        .map_err(|_| InputError::new_err(format!("`channels` = {channels} does not fit in memory")))
 }
 
 /// Refuses `method` on an object (a "model", a "system") of other than one channel.

@@ -1,19 +1,21 @@
-//! `leuven_rt._core`: the thin PyO3 layer over gms-core.
+//! `leuven_rt._core`: the thin `PyO3` layer over gms-dyn and gms-core.
 //!
-//! It turns a Python `Params` into a validated gms-core parameter set, runs the pure-Rust loops
-//! with the GIL released, and maps gms-core's error enum onto the Python exception classes.
-//! Array shape and dtype checks happen in the Python package before the calls arrive here.
+//! It reads Python arguments into plain Rust values, hands them to gms-dyn (which validates
+//! them, chooses the number of elements and runs the loops, here with the GIL released), and
+//! sorts gms-dyn's errors into the Python exception classes. Array shape and dtype checks
+//! happen in the Python package before the calls arrive here.
 
-mod bank;
+// PyO3 extracts arguments (arrays, lists) by value; the methods only read them.
+#![allow(clippy::needless_pass_by_value)]
+
 mod compensator;
 mod convert;
-mod engine;
 mod errors;
 mod mechanics;
 mod model;
 mod online;
+mod params;
 mod slip;
-mod spec;
 
 use pyo3::prelude::*;
 
@@ -23,10 +25,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ParameterError", py.get_type::<errors::ParameterError>())?;
     m.add("InputError", py.get_type::<errors::InputError>())?;
     m.add("DivergenceError", py.get_type::<errors::DivergenceError>())?;
-    m.add("MAX_ELEMENTS", engine::MAX_ELEMENTS)?;
+    m.add("MAX_ELEMENTS", gms_dyn::MAX_ELEMENTS)?;
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
-    m.add_function(wrap_pyfunction!(spec::check_params, m)?)?;
+    m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
+    m.add_class::<params::CoreParams>()?;
     m.add_class::<model::Engine>()?;
     m.add_class::<mechanics::MassEngine>()?;
     m.add_class::<compensator::CompensatorEngine>()?;

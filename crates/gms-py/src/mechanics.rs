@@ -1,198 +1,19 @@
 //! `_core.MassEngine`: channels of a force-driven mass on the friction model (gms-core's
 //! `MassSystem`), stepped from Python. `leuven_rt.MassSystem` subclasses it.
 
-use gms_core::{
-    Error, Hysteresis, MassSample, MassState, MassSystem, Params, Scheme, Spring, Trajectory,
-};
+use gms_core::Trajectory;
+use gms_dyn::{MassBank, MassStates, Mechanics};
 use numpy::{
     PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use rayon::prelude::*;
-use seq_macro::seq;
 
-use crate::bank::{all_or_nothing, Memory};
 use crate::convert::{
-    channel_count, check_dt, parse_scheme, real, same_channels, scheme_name, single_channel,
+    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel,
 };
-use crate::errors::{block_error, show, step_error, InputError, ParameterError};
-use crate::spec::Spec;
-
-/// One channel's states as flat values: x, v, anchor, z and the memory.
-struct StateSlices<'a> {
-    x: &'a mut [f64],
-    v: &'a mut [f64],
-    anchor: &'a mut [f64],
-    z: &'a mut [f64],
-    zeta: &'a mut [f64],
-}
-
-/// Channels of one mass system, whatever its number of elements.
-trait Channels: Send + Sync {
-    fn channels(&self) -> usize;
-    fn elements(&self) -> usize;
-    fn scheme(&self) -> Scheme;
-    fn step(&mut self, channel: usize, u: f64, dt: f64) -> Result<MassSample, Error>;
-    /// Runs channel b over row b of `u` (B × T), writing rows of the three outputs; all or
-    /// nothing across channels; the error names the channel.
-    fn run(&mut self, u: &[f64], dt: f64, out: [&mut [f64]; 3]) -> Result<(), (usize, Error)>;
-    fn place(&mut self, x: &[f64], v: &[f64]);
-    fn read(&self, out: StateSlices<'_>);
-    fn write(&mut self, x: &[f64], v: &[f64], anchor: &[f64], z: &[f64], zeta: &[f64]);
-}
-
-struct Bank<H: Hysteresis> {
-    system: MassSystem<H>,
-    states: Vec<MassState<H::Memory>>,
-    scheme: Scheme,
-}
-
-impl<H> Channels for Bank<H>
-where
-    H: Hysteresis + Send + Sync,
-    H::Memory: Memory,
-{
-    fn channels(&self) -> usize {
-        self.states.len()
-    }
-    fn elements(&self) -> usize {
-        <H::Memory as Memory>::LEN
-    }
-    fn scheme(&self) -> Scheme {
-        self.scheme
-    }
-
-    fn step(&mut self, channel: usize, u: f64, dt: f64) -> Result<MassSample, Error> {
-        self.system
-            .step(&mut self.states[channel], u, dt, self.scheme)
-    }
-
-    fn run(&mut self, u: &[f64], dt: f64, out: [&mut [f64]; 3]) -> Result<(), (usize, Error)> {
-        let samples = u.len().checked_div(self.states.len()).unwrap_or(0).max(1);
-        let (system, scheme) = (&self.system, self.scheme);
-        let [friction, x, v] = out;
-        all_or_nothing(&mut self.states, |states| {
-            states
-                .par_iter_mut()
-                .zip(u.par_chunks(samples))
-                .zip(friction.par_chunks_mut(samples))
-                .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
-                .map(|(((state, u), friction), (x, v))| {
-                    system.simulate(state, u, dt, scheme, Trajectory { friction, x, v })
-                })
-                .collect()
-        })
-    }
-
-    fn place(&mut self, x: &[f64], v: &[f64]) {
-        for (channel, state) in self.states.iter_mut().enumerate() {
-            *state = self.system.state_at(x[channel], v[channel]);
-        }
-    }
-
-    fn read(&self, out: StateSlices<'_>) {
-        let n = <H::Memory as Memory>::LEN;
-        for (b, state) in self.states.iter().enumerate() {
-            out.x[b] = state.x;
-            out.v[b] = state.v;
-            out.anchor[b] = state.anchor;
-            out.z[b] = state.friction.z;
-            state
-                .friction
-                .memory
-                .read(&mut out.zeta[b * n..(b + 1) * n]);
-        }
-    }
-
-    fn write(&mut self, x: &[f64], v: &[f64], anchor: &[f64], z: &[f64], zeta: &[f64]) {
-        let n = <H::Memory as Memory>::LEN;
-        for (b, state) in self.states.iter_mut().enumerate() {
-            state.x = x[b];
-            state.v = v[b];
-            state.anchor = anchor[b];
-            state.friction.z = z[b];
-            state.friction.memory.write(&zeta[b * n..(b + 1) * n]);
-        }
-    }
-}
-
-/// The mechanical parameters, as given (for error messages and the getters).
-#[derive(Clone, Copy)]
-struct Mechanics {
-    mass: f64,
-    stiffness: f64,
-    drive_speed: f64,
-}
-
-impl Mechanics {
-    fn error(&self, error: Error) -> PyErr {
-        use gms_core::Field;
-        match error {
-            Error::NotPositive(Field::mass) => ParameterError::new_err(format!(
-                "`mass` must be finite and > 0, got {}",
-                show(self.mass)
-            )),
-            Error::Negative(Field::stiffness) => ParameterError::new_err(format!(
-                "`stiffness` must be finite and >= 0, got {}",
-                show(self.stiffness)
-            )),
-            Error::NotFiniteValue(Field::drive_speed) => ParameterError::new_err(format!(
-                "`drive_speed` must be finite, got {}",
-                show(self.drive_speed)
-            )),
-            other => ParameterError::new_err(other.to_string()),
-        }
-    }
-}
-
-fn bank<H>(
-    friction: Params<H>,
-    mechanics: Mechanics,
-    channels: usize,
-    scheme: Scheme,
-) -> PyResult<Box<dyn Channels>>
-where
-    H: Hysteresis + Send + Sync + 'static,
-    H::Memory: Memory,
-{
-    let spring = Spring::dragged(mechanics.stiffness, mechanics.drive_speed)
-        .map_err(|error| mechanics.error(error))?;
-    let system = MassSystem::new(friction, mechanics.mass, spring)
-        .map_err(|error| mechanics.error(error))?;
-    let mut states = Vec::new();
-    states.try_reserve_exact(channels).map_err(|_| {
-        InputError::new_err(format!("`channels` = {channels} does not fit in memory"))
-    })?;
-    states.resize(channels, system.state_at(0.0, 0.0));
-    Ok(Box::new(Bank {
-        system,
-        states,
-        scheme,
-    }))
-}
-
-fn build(
-    spec: &Spec,
-    mechanics: Mechanics,
-    channels: usize,
-    scheme: Scheme,
-) -> PyResult<Box<dyn Channels>> {
-    // The friction rules (and their messages) are the friction engine's: check them there first.
-    crate::engine::build(spec, 1, scheme)?;
-    if let Some(sigma0) = spec.sigma0 {
-        return bank(spec.lugre(sigma0)?, mechanics, channels, scheme);
-    }
-    seq!(N in 1..=32 {
-        match spec.w.len() {
-            #(N => bank(spec.maxwell::<N>()?, mechanics, channels, scheme),)*
-            count => Err(ParameterError::new_err(format!(
-                "`W` and `Delta` may have at most {} elements, got {count}",
-                crate::engine::MAX_ELEMENTS
-            ))),
-        }
-    })
-}
+use crate::errors::{raise, InputError, ParameterError};
+use crate::params::parameter_set;
 
 /// x, v, anchor, z of every channel (B,) and zeta (B, N).
 type StateArrays<'py> = (
@@ -206,8 +27,7 @@ type StateArrays<'py> = (
 /// Channels of a mass on the friction model, with an optional (dragged) spring.
 #[pyclass(subclass, module = "leuven_rt._core")]
 pub struct MassEngine {
-    channels: Box<dyn Channels>,
-    mechanics: Mechanics,
+    bank: MassBank,
     params: Py<PyAny>,
 }
 
@@ -238,11 +58,9 @@ impl MassEngine {
         };
         let channels = channel_count(channels)?;
         let scheme = parse_scheme(scheme)?;
-        let spec = Spec::extract(params)?;
-        let channels = build(&spec, mechanics, channels, scheme)?;
+        let set = parameter_set(params)?;
         Ok(Self {
-            channels,
-            mechanics,
+            bank: MassBank::new(&set, mechanics, channels, scheme).map_err(raise)?,
             params: params.clone().unbind(),
         })
     }
@@ -255,43 +73,40 @@ impl MassEngine {
     /// Mass m [kg].
     #[getter]
     fn mass(&self) -> f64 {
-        self.mechanics.mass
+        self.bank.mechanics().mass
     }
     /// Spring stiffness k [N/m] (0: no spring).
     #[getter]
     fn stiffness(&self) -> f64 {
-        self.mechanics.stiffness
+        self.bank.mechanics().stiffness
     }
     /// Speed of the spring's far end [m/s] (0: spring to ground).
     #[getter]
     fn drive_speed(&self) -> f64 {
-        self.mechanics.drive_speed
+        self.bank.mechanics().drive_speed
     }
     /// Number of channels B.
     #[getter]
     fn channels(&self) -> usize {
-        self.channels.channels()
+        self.bank.channels()
     }
     /// Number of Maxwell-slip elements N (0 for linear hysteresis).
     #[getter]
     fn elements(&self) -> usize {
-        self.channels.elements()
+        self.bank.elements()
     }
     /// 'implicit' or 'explicit'.
     #[getter]
     fn scheme(&self) -> &'static str {
-        scheme_name(self.channels.scheme())
+        scheme_name(self.bank.scheme())
     }
 
     /// One step of a single-channel system with applied force `u` held over `dt`; returns
     /// (friction force, position, velocity) at the end of the step.
     fn step(&mut self, u: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<(f64, f64, f64)> {
-        single_channel(self.channels.channels(), "step", "system")?;
+        single_channel(self.bank.channels(), "step", "system")?;
         let (u, dt) = (real(u, "u")?, real(dt, "dt")?);
-        let sample = self
-            .channels
-            .step(0, u, dt)
-            .map_err(|error| step_error(error, u, dt))?;
+        let sample = self.bank.step(0, u, dt).map_err(raise)?;
         Ok((sample.friction, sample.x, sample.v))
     }
 
@@ -303,27 +118,18 @@ impl MassEngine {
         u: PyReadonlyArray2<'py, f64>,
         dt: f64,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
-        let dt = check_dt(dt)?;
         let shape = [u.shape()[0], u.shape()[1]];
-        same_channels(shape[0], self.channels.channels(), "`u`", "system")?;
+        same_channels(shape[0], self.bank.channels(), "`u`", "system")?;
         let u = u.as_slice()?;
         let size = u.len();
         let mut out = vec![0.0; 3 * size];
-        let channels = &mut self.channels;
-        let multiple = shape[0] > 1;
+        let bank = &mut self.bank;
         py.detach(|| {
             let (friction, rest) = out.split_at_mut(size);
             let (x, v) = rest.split_at_mut(size);
-            channels.run(u, dt, [friction, x, v])
+            bank.run(u, dt, Trajectory { friction, x, v })
         })
-        .map_err(|(channel, error)| {
-            block_error(
-                error,
-                &u[channel * shape[1]..],
-                0,
-                multiple.then_some(channel),
-            )
-        })?;
+        .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape([3, shape[0], shape[1]])
     }
 
@@ -335,23 +141,23 @@ impl MassEngine {
         v: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<()> {
         let (x, v) = (x.as_slice()?, v.as_slice()?);
-        let b = self.channels.channels();
+        let b = self.bank.channels();
         if x.len() != b || v.len() != b {
             return Err(InputError::new_err(format!(
                 "`position` and `velocity` must have shape ({b},)"
             )));
         }
-        self.channels.place(x, v);
+        self.bank.place(x, v);
         Ok(())
     }
 
     /// Copies of (x, v, anchor, z, zeta), shapes (B,) × 4 and (B, N).
     fn _get_state<'py>(&self, py: Python<'py>) -> PyResult<StateArrays<'py>> {
-        let (b, n) = (self.channels.channels(), self.channels.elements());
+        let (b, n) = (self.bank.channels(), self.bank.elements());
         let (mut x, mut v, mut anchor, mut z) =
             (vec![0.0; b], vec![0.0; b], vec![0.0; b], vec![0.0; b]);
         let mut zeta = vec![0.0; b * n];
-        self.channels.read(StateSlices {
+        self.bank.read_state(MassStates {
             x: &mut x,
             v: &mut v,
             anchor: &mut anchor,
@@ -376,7 +182,7 @@ impl MassEngine {
         z: PyReadonlyArray1<'_, f64>,
         zeta: PyReadonlyArray2<'_, f64>,
     ) -> PyResult<()> {
-        let (b, n) = (self.channels.channels(), self.channels.elements());
+        let (b, n) = (self.bank.channels(), self.bank.elements());
         let (x, v, anchor, z, zeta) = (
             x.as_slice()?,
             v.as_slice()?,
@@ -389,7 +195,7 @@ impl MassEngine {
                 "state must have shapes x, v, anchor, z ({b},) and zeta ({b}, {n})"
             )));
         }
-        self.channels.write(x, v, anchor, z, zeta);
+        self.bank.write_state(x, v, anchor, z, zeta);
         Ok(())
     }
 }

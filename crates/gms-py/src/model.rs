@@ -6,14 +6,15 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use crate::convert::{
-    channel_count, check_dt, parse_scheme, real, same_channels, scheme_name, single_channel,
-};
-use crate::engine::{build, Engine as Channels};
-use crate::errors::{block_error, step_error, InputError};
-use crate::spec::Spec;
+use gms_dyn::{FrictionBank, Input};
 
-/// z, zeta, last_position and has_last_position of every channel.
+use crate::convert::{
+    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel,
+};
+use crate::errors::{raise, InputError};
+use crate::params::parameter_set;
+
+/// z, zeta, `last_position` and `has_last_position` of every channel.
 type StateArrays<'py> = (
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray2<f64>>,
@@ -24,10 +25,19 @@ type StateArrays<'py> = (
 /// The forces and the deflection z of a traced run.
 type TraceArrays<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
+/// The input kind of the block calls, from their `position` flag.
+fn kind(position: bool) -> Input {
+    if position {
+        Input::Position
+    } else {
+        Input::Velocity
+    }
+}
+
 /// Channels of one friction model sharing one parameter set.
 #[pyclass(subclass, module = "leuven_rt._core")]
 pub struct Engine {
-    channels: Box<dyn Channels>,
+    bank: FrictionBank,
     params: Py<PyAny>,
 }
 
@@ -42,10 +52,9 @@ impl Engine {
     ) -> PyResult<Self> {
         let channels = channel_count(channels)?;
         let scheme = parse_scheme(scheme)?;
-        let spec = Spec::extract(params)?;
-        let channels = build(&spec, channels, scheme)?;
+        let set = parameter_set(params)?;
         Ok(Self {
-            channels,
+            bank: FrictionBank::new(&set, channels, scheme).map_err(raise)?,
             params: params.clone().unbind(),
         })
     }
@@ -59,37 +68,33 @@ impl Engine {
     /// Number of channels B.
     #[getter]
     fn channels(&self) -> usize {
-        self.channels.channels()
+        self.bank.channels()
     }
 
     /// Number of Maxwell-slip elements N (0 for linear hysteresis).
     #[getter]
     fn elements(&self) -> usize {
-        self.channels.elements()
+        self.bank.elements()
     }
 
     /// 'implicit' or 'explicit'.
     #[getter]
     fn scheme(&self) -> &'static str {
-        scheme_name(self.channels.scheme())
+        scheme_name(self.bank.scheme())
     }
 
     /// One step of a single-channel model with velocity `v` held over `dt`; returns the force.
     fn step(&mut self, v: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        single_channel(self.channels.channels(), "step", "model")?;
+        single_channel(self.bank.channels(), "step", "model")?;
         let (v, dt) = (real(v, "v")?, real(dt, "dt")?);
-        self.channels
-            .step(0, v, dt, false)
-            .map_err(|error| step_error(error, v, dt))
+        self.bank.step(0, v, dt, Input::Velocity).map_err(raise)
     }
 
     /// One step of a single-channel model with position input `x`; returns the force.
     fn step_position(&mut self, x: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        single_channel(self.channels.channels(), "step_position", "model")?;
+        single_channel(self.bank.channels(), "step_position", "model")?;
         let (x, dt) = (real(x, "x")?, real(dt, "dt")?);
-        self.channels
-            .step(0, x, dt, true)
-            .map_err(|error| step_error(error, x, dt))
+        self.bank.step(0, x, dt, Input::Position).map_err(raise)
     }
 
     /// Steps every channel once; `input` has shape (B,), already float64 and finite.
@@ -100,12 +105,11 @@ impl Engine {
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let dt = check_dt(dt)?;
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
-        self.channels
-            .run(input, dt, position, &mut out)
-            .map_err(|(channel, error)| block_error(error, input, channel, Some(channel)))?;
+        self.bank
+            .run(input, dt, kind(position), &mut out)
+            .map_err(raise)?;
         Ok(PyArray1::from_vec(py, out))
     }
 
@@ -117,18 +121,13 @@ impl Engine {
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let dt = check_dt(dt)?;
         let shape = [input.shape()[0], input.shape()[1]];
-        same_channels(shape[0], self.channels.channels(), "input", "model")?;
+        same_channels(shape[0], self.bank.channels(), "input", "model")?;
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
-        let channels = &mut self.channels;
-        let multiple = shape[0] > 1;
-        py.detach(|| channels.run(input, dt, position, &mut out))
-            .map_err(|(channel, error)| {
-                let channel = multiple.then_some(channel);
-                block_error(error, &input[channel.unwrap_or(0) * shape[1]..], 0, channel)
-            })?;
+        let bank = &mut self.bank;
+        py.detach(|| bank.run(input, dt, kind(position), &mut out))
+            .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape(shape)
     }
 
@@ -140,32 +139,31 @@ impl Engine {
         x: PyReadonlyArray1<'py, f64>,
         dt: f64,
     ) -> PyResult<TraceArrays<'py>> {
-        if self.channels.channels() != 1 {
+        if self.bank.channels() != 1 {
             return Err(InputError::new_err(format!(
                 "`trace_position` runs one channel, this model has {}",
-                self.channels.channels()
+                self.bank.channels()
             )));
         }
-        let dt = check_dt(dt)?;
         let x = x.as_slice()?;
         let (mut out, mut z) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-        let channels = &mut self.channels;
-        py.detach(|| channels.run_position_deflection(x, dt, &mut out, &mut z))
-            .map_err(|error| block_error(error, x, 0, None))?;
+        let bank = &mut self.bank;
+        py.detach(|| bank.trace_position(0, x, dt, &mut out, &mut z))
+            .map_err(raise)?;
         Ok((PyArray1::from_vec(py, out), PyArray1::from_vec(py, z)))
     }
 
     /// Relaxes every channel: z = 0, elements undeflected, no previous position.
     fn reset(&mut self) {
-        self.channels.reset();
+        self.bank.reset();
     }
 
-    /// Copies of (z, zeta, last_position, has_last_position), shapes (B,), (B, N), (B,), (B,).
+    /// Copies of (z, zeta, `last_position`, `has_last_position`), shapes (B,), (B, N), (B,), (B,).
     fn _get_state<'py>(&self, py: Python<'py>) -> PyResult<StateArrays<'py>> {
-        let (b, n) = (self.channels.channels(), self.channels.elements());
+        let (b, n) = (self.bank.channels(), self.bank.elements());
         let (mut z, mut memory) = (vec![0.0; b], vec![0.0; b * n]);
         let (mut last, mut has_last) = (vec![0.0; b], vec![false; b]);
-        self.channels
+        self.bank
             .read_state(&mut z, &mut memory, &mut last, &mut has_last);
         Ok((
             PyArray1::from_vec(py, z),
@@ -183,7 +181,7 @@ impl Engine {
         last: PyReadonlyArray1<'_, f64>,
         has_last: PyReadonlyArray1<'_, bool>,
     ) -> PyResult<()> {
-        let (b, n) = (self.channels.channels(), self.channels.elements());
+        let (b, n) = (self.bank.channels(), self.bank.elements());
         let (z, zeta) = (z.as_slice()?, zeta.as_slice()?);
         let (last, has_last) = (last.as_slice()?, has_last.as_slice()?);
         if z.len() != b || zeta.len() != b * n || last.len() != b || has_last.len() != b {
@@ -192,7 +190,7 @@ impl Engine {
                  has_last_position ({b},)"
             )));
         }
-        self.channels.write_state(z, zeta, last, has_last);
+        self.bank.write_state(z, zeta, last, has_last);
         Ok(())
     }
 }

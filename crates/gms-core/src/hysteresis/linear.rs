@@ -4,7 +4,7 @@ use super::{Hysteresis, Trial};
 use crate::checks::positive;
 use crate::error::{Error, Field};
 
-/// Linear hysteresis force of stiffness `sigma0` [N/m].
+/// Linear hysteresis force of stiffness `sigma0` \[N/m\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Linear {
     sigma0: f64,

@@ -46,6 +46,7 @@ impl<const N: usize> MaxwellSlip<N> {
                 return Err(Error::Element {
                     field: Field::W,
                     index,
+                    value: w[index],
                 });
             }
             stiffness[index] = w[index] / delta[index];
@@ -54,6 +55,7 @@ impl<const N: usize> MaxwellSlip<N> {
                 return Err(Error::Element {
                     field: Field::Delta,
                     index,
+                    value: delta[index],
                 });
             }
         }
@@ -203,14 +205,16 @@ mod tests {
             MaxwellSlip::new([1.0, -1.0], [1.0, 1.0]),
             Err(Error::Element {
                 field: Field::W,
-                index: 1
+                index: 1,
+                value: -1.0
             })
         );
         assert_eq!(
             MaxwellSlip::new([1.0, 1.0], [1.0, f64::INFINITY]),
             Err(Error::Element {
                 field: Field::Delta,
-                index: 1
+                index: 1,
+                value: f64::INFINITY
             })
         );
         assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));

@@ -54,7 +54,7 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
             assert!(
                 P == N + EXTRA_TERMS,
                 "P must be N + 3: W (N of them), Fc, sigma2, offset"
-            )
+            );
         };
         Ok(Self {
             regressor: SlipRegressor::new(delta)?,
@@ -73,7 +73,10 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
         }
         let mut regressor = self.regressor;
         let phi = regressor_at(&mut regressor, x, v);
-        let error = self.rls.update(&phi, f)?;
+        let error = self.rls.update(&phi, f).map_err(|error| match error {
+            Error::Overflow { index } => Error::InputsOverflow { index, x, v, f },
+            other => other,
+        })?;
         self.regressor = regressor;
         Ok(error)
     }
@@ -106,7 +109,11 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
         }
         for (input, field) in [(x, Field::x), (v, Field::v), (f, Field::f)] {
             if let Some(index) = input.iter().position(|value| !value.is_finite()) {
-                return Err(Error::NotFinite { field, index });
+                return Err(Error::NotFinite {
+                    field,
+                    index,
+                    value: input[index],
+                });
             }
         }
         let before = *self;
@@ -115,7 +122,9 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
             if let Err(error) = self.update(x, v, f) {
                 *self = before;
                 return Err(match error {
-                    Error::Overflow { .. } => Error::Overflow { index },
+                    Error::InputsOverflow { x, v, f, .. } => {
+                        Error::InputsOverflow { index, x, v, f }
+                    }
                     other => other,
                 });
             }
@@ -146,7 +155,12 @@ impl<const N: usize, const P: usize> OnlineIdentifier<N, P> {
         if force.is_finite() {
             Ok(force)
         } else {
-            Err(Error::Overflow { index: 0 })
+            Err(Error::InputsOverflow {
+                index: 0,
+                x,
+                v,
+                f: f64::NAN,
+            })
         }
     }
 

@@ -71,21 +71,35 @@ impl<const P: usize> Rls<P> {
             max_trace,
         } = settings;
         if !(forgetting > 0.0 && forgetting <= 1.0) {
-            return Err(Error::NotInUnitInterval(Field::forgetting));
+            return Err(Error::NotInUnitInterval {
+                field: Field::forgetting,
+                value: forgetting,
+            });
         }
         if !(initial_covariance.is_finite() && initial_covariance > 0.0) {
-            return Err(Error::NotPositive(Field::initial_covariance));
+            return Err(Error::NotPositive {
+                field: Field::initial_covariance,
+                value: initial_covariance,
+            });
         }
         if !(max_trace.is_finite() && max_trace > 0.0) {
-            return Err(Error::NotPositive(Field::max_trace));
+            return Err(Error::NotPositive {
+                field: Field::max_trace,
+                value: max_trace,
+            });
         }
         if max_trace < P as f64 * initial_covariance {
-            return Err(Error::TraceBelowInitial);
+            return Err(Error::TraceBelowInitial {
+                parameters: P,
+                initial_covariance,
+                max_trace,
+            });
         }
         if let Some(index) = initial.iter().position(|value| !value.is_finite()) {
             return Err(Error::NotFinite {
                 field: Field::initial,
                 index,
+                value: initial[index],
             });
         }
         let initial = SVector::from(initial);
@@ -155,6 +169,7 @@ impl<const P: usize> Rls<P> {
             return Err(Error::NotFinite {
                 field: Field::regressor,
                 index,
+                value: regressor[index],
             });
         }
         finite(measured, Field::f)?;
@@ -298,31 +313,54 @@ mod tests {
         };
         assert_eq!(
             with(0.0, 1.0, 10.0),
-            Err(Error::NotInUnitInterval(Field::forgetting))
+            Err(Error::NotInUnitInterval {
+                field: Field::forgetting,
+                value: 0.0
+            })
         );
         assert_eq!(
             with(1.5, 1.0, 10.0),
-            Err(Error::NotInUnitInterval(Field::forgetting))
+            Err(Error::NotInUnitInterval {
+                field: Field::forgetting,
+                value: 1.5
+            })
         );
         assert_eq!(
             with(f64::NAN, 1.0, 10.0),
-            Err(Error::NotInUnitInterval(Field::forgetting))
+            Err(Error::NotInUnitInterval {
+                field: Field::forgetting,
+                value: f64::NAN
+            })
         );
         assert_eq!(
             with(1.0, 0.0, 10.0),
-            Err(Error::NotPositive(Field::initial_covariance))
+            Err(Error::NotPositive {
+                field: Field::initial_covariance,
+                value: 0.0
+            })
         );
         assert_eq!(
             with(1.0, 1.0, f64::INFINITY),
-            Err(Error::NotPositive(Field::max_trace))
+            Err(Error::NotPositive {
+                field: Field::max_trace,
+                value: f64::INFINITY
+            })
         );
-        assert_eq!(with(1.0, 1.0, 1.5), Err(Error::TraceBelowInitial));
+        assert_eq!(
+            with(1.0, 1.0, 1.5),
+            Err(Error::TraceBelowInitial {
+                parameters: 2,
+                initial_covariance: 1.0,
+                max_trace: 1.5
+            })
+        );
         assert!(with(1.0, 1.0, 2.0).is_ok());
         assert_eq!(
             Rls::new([0.0, f64::NAN], SETTINGS),
             Err(Error::NotFinite {
                 field: Field::initial,
-                index: 1
+                index: 1,
+                value: f64::NAN
             })
         );
     }

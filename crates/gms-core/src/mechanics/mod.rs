@@ -2,7 +2,7 @@
 //!
 //! m·ẍ = u(t) − Ff + k·(a(t) − x), where Ff is the modified Leuven friction force and the spring
 //! k is optional: k = 0 is a free mass, a spring to ground has its far end a fixed at 0, and the
-//! stick-slip rig drags a at constant speed (a(t) = drive_speed·t).
+//! stick-slip rig drags a at constant speed (a(t) = `drive_speed`·t).
 //! [`MassSystem`] holds the parameters, [`MassState`] one channel's x, v, a and friction state;
 //! [`MassSystem::step`] advances one sample with an external force (the closed-loop path: a
 //! controller computes u from the returned position and velocity), [`MassSystem::simulate`] a
@@ -46,7 +46,7 @@ use crate::hysteresis::Hysteresis;
 use crate::model::{Params, Scheme, State};
 use coupled::Coupled;
 
-/// The spring between the mass and its far end a(t) = a₀ + drive_speed·t.
+/// The spring between the mass and its far end a(t) = a₀ + `drive_speed`·t.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spring {
     stiffness: f64,
@@ -60,17 +60,20 @@ impl Spring {
         drive_speed: 0.0,
     };
 
-    /// A spring of `stiffness` [N/m] (finite, ≥ 0) to a fixed point.
+    /// A spring of `stiffness` \[N/m\] (finite, ≥ 0) to a fixed point.
     pub fn ground(stiffness: f64) -> Result<Self, Error> {
         Self::dragged(stiffness, 0.0)
     }
 
-    /// A spring of `stiffness` [N/m] (finite, ≥ 0) whose far end moves at `drive_speed` [m/s]
+    /// A spring of `stiffness` \[N/m\] (finite, ≥ 0) whose far end moves at `drive_speed` \[m/s\]
     /// (finite, any sign): the stick-slip rig.
     pub fn dragged(stiffness: f64, drive_speed: f64) -> Result<Self, Error> {
         non_negative(stiffness, Field::stiffness)?;
         if !drive_speed.is_finite() {
-            return Err(Error::NotFiniteValue(Field::drive_speed));
+            return Err(Error::NotFiniteValue {
+                field: Field::drive_speed,
+                value: drive_speed,
+            });
         }
         Ok(Self {
             stiffness,
@@ -78,12 +81,12 @@ impl Spring {
         })
     }
 
-    /// Stiffness k [N/m].
+    /// Stiffness k \[N/m\].
     pub fn stiffness(&self) -> f64 {
         self.stiffness
     }
 
-    /// Speed of the far end [m/s].
+    /// Speed of the far end \[m/s\].
     pub fn drive_speed(&self) -> f64 {
         self.drive_speed
     }
@@ -100,11 +103,11 @@ pub struct MassSystem<H> {
 /// One channel of a [`MassSystem`]: the mechanical state and the friction state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MassState<M> {
-    /// Position x [m].
+    /// Position x \[m\].
     pub x: f64,
-    /// Velocity v [m/s].
+    /// Velocity v \[m/s\].
     pub v: f64,
-    /// Position of the spring's far end a [m].
+    /// Position of the spring's far end a \[m\].
     pub anchor: f64,
     /// The friction model's state (z and the hysteresis memory).
     pub friction: State<M>,
@@ -113,22 +116,22 @@ pub struct MassState<M> {
 /// What one step returns: the friction force over the step, and the state at its end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MassSample {
-    /// Friction force Ff over the step [N] (acting against the motion).
+    /// Friction force Ff over the step \[N\] (acting against the motion).
     pub friction: f64,
-    /// Position at the end of the step [m].
+    /// Position at the end of the step \[m\].
     pub x: f64,
-    /// Velocity at the end of the step [m/s] (also the velocity held over it).
+    /// Velocity at the end of the step \[m/s\] (also the velocity held over it).
     pub v: f64,
 }
 
 /// Caller-owned output slices of [`MassSystem::simulate`], one value per input sample.
 #[derive(Debug)]
 pub struct Trajectory<'a> {
-    /// Friction force over each step [N].
+    /// Friction force over each step \[N\].
     pub friction: &'a mut [f64],
-    /// Position at the end of each step [m].
+    /// Position at the end of each step \[m\].
     pub x: &'a mut [f64],
-    /// Velocity at the end of each step [m/s].
+    /// Velocity at the end of each step \[m/s\].
     pub v: &'a mut [f64],
 }
 
@@ -147,7 +150,7 @@ impl<H: Hysteresis> MassSystem<H> {
     pub fn friction(&self) -> &Params<H> {
         &self.friction
     }
-    /// Mass m [kg].
+    /// Mass m \[kg\].
     pub fn mass(&self) -> f64 {
         self.mass
     }
@@ -208,17 +211,13 @@ impl<H: Hysteresis> MassSystem<H> {
         all_finite(u, Field::u)?;
         let before = *state;
         for (index, &force) in u.iter().enumerate() {
-            match self.advance(state, force, dt, scheme) {
-                Ok(sample) => {
-                    friction[index] = sample.friction;
-                    x[index] = sample.x;
-                    v[index] = sample.v;
-                }
-                Err(_) => {
-                    *state = before;
-                    return Err(Error::Diverged { index });
-                }
-            }
+            let Ok(sample) = self.advance(state, force, dt, scheme) else {
+                *state = before;
+                return Err(Error::Diverged { index });
+            };
+            friction[index] = sample.friction;
+            x[index] = sample.x;
+            v[index] = sample.v;
         }
         Ok(())
     }

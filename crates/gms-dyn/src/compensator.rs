@@ -1,0 +1,182 @@
+//! One axis of friction compensation, whatever its hysteresis: the object behind both the
+//! Python `Compensator` and the C `leuven_rt_compensator`.
+//!
+//! Creating one allocates once (its size depends on the number of elements); stepping, swapping
+//! parameters and resetting never allocate.
+
+use gms_core::{Hysteresis, Mode, Params, State};
+
+use crate::channels::Memory;
+use crate::error::Error;
+use crate::params::{with_params, HysteresisKind, InParameterSet, ParameterSet, RawParams};
+
+/// A copy of a compensator's model state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompensatorState {
+    /// The friction state z.
+    pub z: f64,
+    /// The element positions ζ (empty for linear hysteresis).
+    pub zeta: Vec<f64>,
+    /// The last position (observer mode, after the first sample).
+    pub last_position: Option<f64>,
+}
+
+/// One axis of friction compensation at a fixed sample time.
+pub struct Compensator {
+    axis: Box<dyn Axis>,
+}
+
+/// gms-core's compensator for one hysteresis type, behind a trait object.
+trait Axis: Send + Sync {
+    fn step(&mut self, input: f64) -> Result<f64, gms_core::Error>;
+    fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error>;
+    fn reset(&mut self);
+    fn output(&self) -> f64;
+    fn dt(&self) -> f64;
+    fn mode(&self) -> Mode;
+    fn kind(&self) -> HysteresisKind;
+    fn state(&self) -> CompensatorState;
+}
+
+impl<H> Axis for gms_core::Compensator<H>
+where
+    H: InParameterSet<Memory: Memory> + Send + Sync,
+{
+    #[inline]
+    fn step(&mut self, input: f64) -> Result<f64, gms_core::Error> {
+        gms_core::Compensator::step(self, input)
+    }
+
+    fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error> {
+        let Some(params) = H::find(params) else {
+            return Err(Error::Incompatible {
+                expected: self.kind(),
+                got: params.kind(),
+            });
+        };
+        gms_core::Compensator::set_params(self, params);
+        Ok(())
+    }
+
+    fn reset(&mut self) {
+        gms_core::Compensator::reset(self);
+    }
+
+    fn output(&self) -> f64 {
+        gms_core::Compensator::output(self)
+    }
+
+    fn dt(&self) -> f64 {
+        gms_core::Compensator::dt(self)
+    }
+
+    fn mode(&self) -> Mode {
+        gms_core::Compensator::mode(self)
+    }
+
+    fn kind(&self) -> HysteresisKind {
+        match <H::Memory as Memory>::LEN {
+            0 => HysteresisKind::Linear,
+            elements => HysteresisKind::Maxwell { elements },
+        }
+    }
+
+    fn state(&self) -> CompensatorState {
+        let State {
+            z,
+            memory,
+            last_position,
+        } = gms_core::Compensator::state(self);
+        CompensatorState {
+            z: *z,
+            zeta: memory.values().to_vec(),
+            last_position: *last_position,
+        }
+    }
+}
+
+fn boxed<H>(params: Params<H>, dt: f64, mode: Mode) -> Result<Box<dyn Axis>, Error>
+where
+    H: InParameterSet<Memory: Memory> + Hysteresis + Send + Sync + 'static,
+{
+    Ok(Box::new(gms_core::Compensator::new(params, dt, mode)?))
+}
+
+impl Compensator {
+    /// A compensator at rest with sample time `dt` \[s\].
+    ///
+    /// # Errors
+    /// `dt` not finite and > 0.
+    pub fn new(params: &ParameterSet, dt: f64, mode: Mode) -> Result<Self, Error> {
+        Ok(Self {
+            axis: with_params!(*params, params => boxed(params, dt, mode)?),
+        })
+    }
+
+    /// The friction force to add to the command for this sample; `input` is the desired
+    /// velocity (feedforward) or the measured position (observer).
+    ///
+    /// # Errors
+    /// A non-finite input, a position jump whose velocity is not finite, or a non-finite
+    /// force; the state and [`Compensator::output`] are unchanged.
+    #[inline]
+    pub fn step(&mut self, input: f64) -> Result<f64, gms_core::Error> {
+        self.axis.step(input)
+    }
+
+    /// Swaps in validated parameters of the same kind and number of elements; the hysteresis
+    /// force carries over, so the output has no jump.
+    ///
+    /// # Errors
+    /// [`Error::Incompatible`]; nothing changes.
+    pub fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error> {
+        self.axis.set_params(params)
+    }
+
+    /// Validates `raw` and swaps it in, as [`Compensator::set_params`]. The kind and number of
+    /// elements are compared first, so that a set of the wrong size is called that, whatever
+    /// else is wrong with it. Never allocates.
+    ///
+    /// # Errors
+    /// [`Error::Incompatible`], or the first rule `raw` breaks; nothing changes.
+    pub fn set_raw_params(&mut self, raw: &RawParams<'_>) -> Result<(), Error> {
+        let expected = self.axis.kind();
+        if raw.kind() != expected {
+            return Err(Error::Incompatible {
+                expected,
+                got: raw.kind(),
+            });
+        }
+        self.axis.set_params(&raw.validate()?)
+    }
+
+    /// Back to rest: relaxed state, no previous position, output 0.
+    pub fn reset(&mut self) {
+        self.axis.reset();
+    }
+
+    /// The last force returned by [`Compensator::step`] (0 before the first).
+    pub fn output(&self) -> f64 {
+        self.axis.output()
+    }
+
+    /// The sample time \[s\].
+    pub fn dt(&self) -> f64 {
+        self.axis.dt()
+    }
+
+    /// Feedforward or observer.
+    pub fn mode(&self) -> Mode {
+        self.axis.mode()
+    }
+
+    /// The kind of hysteresis and its number of elements.
+    pub fn kind(&self) -> HysteresisKind {
+        self.axis.kind()
+    }
+
+    /// A copy of the model state.
+    pub fn state(&self) -> CompensatorState {
+        self.axis.state()
+    }
+}

@@ -1,0 +1,303 @@
+//! Channels of the friction model that share one validated parameter set, whatever its number
+//! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
+
+use gms_core::{Hysteresis, Params, Scheme, State};
+use rayon::prelude::*;
+
+use crate::channels::{
+    all_or_nothing, check_channel, check_output, samples_per_channel, states, Memory,
+};
+use crate::error::Error;
+use crate::params::{with_params, ParameterSet};
+
+/// What the input signal of a friction channel is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Input {
+    /// Velocity v \[m/s\].
+    Velocity,
+    /// Position x \[m\]; the velocity is its difference over dt.
+    Position,
+}
+
+/// Channels of one friction model sharing one parameter set.
+pub struct FrictionBank {
+    channels: Box<dyn FrictionChannels>,
+}
+
+/// The bank for one hysteresis type, behind a trait object so that N is chosen at run time.
+trait FrictionChannels: Send + Sync {
+    fn channels(&self) -> usize;
+    fn elements(&self) -> usize;
+    fn scheme(&self) -> Scheme;
+    fn step(&mut self, channel: usize, input: f64, dt: f64, kind: Input) -> Result<f64, Error>;
+    fn run(&mut self, input: &[f64], dt: f64, kind: Input, out: &mut [f64]) -> Result<(), Error>;
+    fn trace_position(
+        &mut self,
+        channel: usize,
+        x: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error>;
+    fn reset(&mut self);
+    fn read_state(
+        &self,
+        z: &mut [f64],
+        memory: &mut [f64],
+        last: &mut [f64],
+        has_last: &mut [bool],
+    );
+    fn write_state(&mut self, z: &[f64], memory: &[f64], last: &[f64], has_last: &[bool]);
+}
+
+struct Channels<H: Hysteresis> {
+    params: Params<H>,
+    states: Vec<State<H::Memory>>,
+    scheme: Scheme,
+}
+
+impl<H> FrictionChannels for Channels<H>
+where
+    H: Hysteresis<Memory: Memory> + Send + Sync,
+{
+    fn channels(&self) -> usize {
+        self.states.len()
+    }
+
+    fn elements(&self) -> usize {
+        <H::Memory as Memory>::LEN
+    }
+
+    fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
+    fn step(&mut self, channel: usize, input: f64, dt: f64, kind: Input) -> Result<f64, Error> {
+        check_channel(channel, self.states.len())?;
+        let state = &mut self.states[channel];
+        let result = match kind {
+            Input::Velocity => self.params.step(state, input, dt, self.scheme),
+            Input::Position => self.params.step_position(state, input, dt, self.scheme),
+        };
+        Ok(result?)
+    }
+
+    fn run(&mut self, input: &[f64], dt: f64, kind: Input, out: &mut [f64]) -> Result<(), Error> {
+        let samples = samples_per_channel(input.len(), self.states.len())?;
+        check_output(input.len(), out.len())?;
+        let (params, scheme) = (&self.params, self.scheme);
+        // gms-core checks dt and scans each row for finiteness before it steps: the one check.
+        let run_one = |state: &mut State<H::Memory>, input: &[f64], out: &mut [f64]| match kind {
+            Input::Velocity => params.simulate(state, input, dt, scheme, out),
+            Input::Position => params.simulate_position(state, input, dt, scheme, out),
+        };
+        all_or_nothing(&mut self.states, |states| {
+            if states.len() == 1 || samples == 0 {
+                // One channel needs no thread pool; empty rows still have their dt checked.
+                let (mut input, mut out) = (input, out);
+                return states
+                    .iter_mut()
+                    .map(|state| {
+                        let (row, rest) = input.split_at(samples);
+                        let (row_out, rest_out) = core::mem::take(&mut out).split_at_mut(samples);
+                        (input, out) = (rest, rest_out);
+                        run_one(state, row, row_out)
+                    })
+                    .collect();
+            }
+            states
+                .par_iter_mut()
+                .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
+                .map(|(state, (input, out))| run_one(state, input, out))
+                .collect()
+        })
+    }
+
+    fn trace_position(
+        &mut self,
+        channel: usize,
+        x: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error> {
+        check_channel(channel, self.states.len())?;
+        Ok(self.params.simulate_position_deflection(
+            &mut self.states[channel],
+            x,
+            dt,
+            self.scheme,
+            out,
+            z,
+        )?)
+    }
+
+    fn reset(&mut self) {
+        let relaxed = self.params.relaxed_state();
+        self.states.iter_mut().for_each(|state| *state = relaxed);
+    }
+
+    fn read_state(
+        &self,
+        z: &mut [f64],
+        memory: &mut [f64],
+        last: &mut [f64],
+        has_last: &mut [bool],
+    ) {
+        let n = <H::Memory as Memory>::LEN;
+        for (channel, state) in self.states.iter().enumerate() {
+            z[channel] = state.z;
+            memory[channel * n..(channel + 1) * n].copy_from_slice(state.memory.values());
+            last[channel] = state.last_position.unwrap_or(0.0);
+            has_last[channel] = state.last_position.is_some();
+        }
+    }
+
+    fn write_state(&mut self, z: &[f64], memory: &[f64], last: &[f64], has_last: &[bool]) {
+        let n = <H::Memory as Memory>::LEN;
+        for (channel, state) in self.states.iter_mut().enumerate() {
+            state.z = z[channel];
+            state.memory.write(&memory[channel * n..(channel + 1) * n]);
+            state.last_position = has_last[channel].then_some(last[channel]);
+        }
+    }
+}
+
+fn boxed<H>(
+    params: Params<H>,
+    channels: usize,
+    scheme: Scheme,
+) -> Result<Box<dyn FrictionChannels>, Error>
+where
+    H: Hysteresis<Memory: Memory> + Send + Sync + 'static,
+{
+    Ok(Box::new(Channels {
+        states: states(params.relaxed_state(), channels)?,
+        params,
+        scheme,
+    }))
+}
+
+impl FrictionBank {
+    /// `channels` relaxed channels of `params`.
+    ///
+    /// # Errors
+    /// [`Error::OutOfMemory`] if the states do not fit in memory.
+    pub fn new(params: &ParameterSet, channels: usize, scheme: Scheme) -> Result<Self, Error> {
+        Ok(Self {
+            channels: with_params!(*params, params => boxed(params, channels, scheme)?),
+        })
+    }
+
+    /// Number of channels B.
+    pub fn channels(&self) -> usize {
+        self.channels.channels()
+    }
+
+    /// Number of Maxwell-slip elements N (0 for linear hysteresis).
+    pub fn elements(&self) -> usize {
+        self.channels.elements()
+    }
+
+    /// The integration scheme of every step.
+    pub fn scheme(&self) -> Scheme {
+        self.channels.scheme()
+    }
+
+    /// One step of `channel` with `input` held over `dt`; returns the force.
+    ///
+    /// # Errors
+    /// A channel index beyond the bank, a non-finite input, a bad `dt`, or a diverged explicit
+    /// step; the state is unchanged.
+    pub fn step(&mut self, channel: usize, input: f64, dt: f64, kind: Input) -> Result<f64, Error> {
+        self.channels.step(channel, input, dt, kind)
+    }
+
+    /// Runs every channel over its row of `input` (channels × samples, row-major), in parallel,
+    /// writing the forces into `out` (same shape).
+    ///
+    /// # Errors
+    /// All or nothing: a rejected call changes no state; the error names the sample, and the
+    /// channel when there are several.
+    pub fn run(
+        &mut self,
+        input: &[f64],
+        dt: f64,
+        kind: Input,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        self.channels.run(input, dt, kind, out)
+    }
+
+    /// Runs `channel` over positions `x`, writing the forces into `out` and the deflection z
+    /// after every sample into `z`.
+    ///
+    /// # Errors
+    /// As [`FrictionBank::run`] for that channel.
+    pub fn trace_position(
+        &mut self,
+        channel: usize,
+        x: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        z: &mut [f64],
+    ) -> Result<(), Error> {
+        self.channels.trace_position(channel, x, dt, out, z)
+    }
+
+    /// Relaxes every channel: z = 0, elements undeflected, no previous position.
+    pub fn reset(&mut self) {
+        self.channels.reset();
+    }
+
+    /// Copies the states out: z (B), memory (B × N, row-major), last position (B, 0 where
+    /// there is none) and whether there is one (B).
+    ///
+    /// # Panics
+    /// If a slice has another length.
+    pub fn read_state(
+        &self,
+        z: &mut [f64],
+        memory: &mut [f64],
+        last_position: &mut [f64],
+        has_last_position: &mut [bool],
+    ) {
+        self.assert_state_lengths(
+            z.len(),
+            memory.len(),
+            last_position.len(),
+            has_last_position.len(),
+        );
+        self.channels
+            .read_state(z, memory, last_position, has_last_position);
+    }
+
+    /// Copies states in; the slices are shaped as for [`FrictionBank::read_state`].
+    ///
+    /// # Panics
+    /// If a slice has another length.
+    pub fn write_state(
+        &mut self,
+        z: &[f64],
+        memory: &[f64],
+        last_position: &[f64],
+        has_last_position: &[bool],
+    ) {
+        self.assert_state_lengths(
+            z.len(),
+            memory.len(),
+            last_position.len(),
+            has_last_position.len(),
+        );
+        self.channels
+            .write_state(z, memory, last_position, has_last_position);
+    }
+
+    fn assert_state_lengths(&self, z: usize, memory: usize, last: usize, has_last: usize) {
+        let (b, n) = (self.channels(), self.elements());
+        assert!(
+            z == b && memory == b * n && last == b && has_last == b,
+            "state slices must have lengths {b}, {b}×{n}, {b}, {b}"
+        );
+    }
+}
