@@ -7,6 +7,6 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --upgrade "pip>=23" "maturin>=1.9,<2"
-# Installs leuven-rt in editable mode, with numpy, scipy, matplotlib, tqdm, pytest, hypothesis.
-.venv/bin/maturin develop --release --quiet --extras test
+# Installs leuven-rt in editable mode, with its runtime dependencies and the test and lint tools.
+.venv/bin/maturin develop --release --quiet --extras test,lint
 export PATH="$root/.venv/bin:$PATH"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every check: formatting, lints, Rust tests, the no_std proof, the Python build and pytest.
+# Every check: formatting, lints, Rust tests and docs, the no_std proof, the Python build, Python
+# lint, types and stubs, and pytest.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 step() { printf '\n==> %s\n' "$*"; }
@@ -18,5 +19,12 @@ step "cargo doc --workspace --no-deps (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 step "Python build"
 source scripts/setup.sh
+step "ruff check, ruff format --check"
+ruff check python tests benches
+ruff format --check python tests benches
+step "mypy (strict) on the package"
+mypy
+step "stubtest: the extension against its stub"
+python -m mypy.stubtest leuven_rt._core
 step "pytest"
 python -m pytest

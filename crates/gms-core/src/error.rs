@@ -4,7 +4,7 @@ use core::fmt;
 
 /// A named input of the model.
 ///
-/// The variants are spelled exactly like the keys of a parameter file (DESIGN.md §2) and the
+/// The variants are spelled exactly like the keys of a parameter file (docs/parameters.md#keys) and the
 /// arguments of the step functions, so that an error can be traced to the key the user wrote.
 #[allow(non_camel_case_types)] // the paper's and the parameter file's spelling wins over Rust's
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

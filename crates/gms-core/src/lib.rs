@@ -47,3 +47,8 @@ pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
 pub use solver::{Solution, MAX_ITERATIONS};
 pub use stribeck::Stribeck;
+
+// The README's Rust snippets run as doctests of this crate, so the README cannot drift from the API.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeSnippets;

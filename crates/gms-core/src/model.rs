@@ -1,6 +1,6 @@
 //! The modified Leuven model (eqs. 1, 3, 4, 5): parameters, per-channel state, the discrete step.
 //!
-//! The discrete step is the contract of DESIGN.md §2. The velocity vₖ is held over the step;
+//! The discrete step is the contract of docs/model.md#discrete-step. The velocity vₖ is held over the step;
 //! the state equation dz/dt = f(z, v) = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ is advanced by backward Euler
 //! (`Implicit`, the default) or forward Euler (`Explicit`); the memory of the hysteresis is
 //! committed at the new z; the output is Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2·vₖ.

@@ -1,4 +1,4 @@
-//! The input side of the step contract (DESIGN.md §2, "Discrete step"):
+//! The input side of the step contract (docs/model.md#discrete-step):
 //!
 //! - non-finite v, x or dt (and dt ≤ 0) are reported with the field (and, for block calls, the
 //!   index of the first bad sample) and leave the state bitwise untouched;

@@ -1,4 +1,4 @@
-//! The step's formulas of DESIGN.md §2 ("Discrete step"), recomputed from the states before and
+//! The step's formulas of docs/model.md#discrete-step, recomputed from the states before and
 //! after every step of random runs:
 //!
 //! - both schemes output Fₖ = Fh(z⁺) + sigma1·(z⁺ − z)/dt + sigma2·vₖ, with Fh(z⁺) the trial from

@@ -1,4 +1,4 @@
-//! Every parameter rule of DESIGN.md §2 is enforced at construction, with the `Error` variant
+//! Every parameter rule of docs/parameters.md#rules is enforced at construction, with the `Error` variant
 //! that names the offending key, and valid values on the edge of each rule are accepted:
 //!
 //! | rule | constructor | error |

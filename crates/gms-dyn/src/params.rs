@@ -127,7 +127,7 @@ impl RawParams<'_> {
         }
     }
 
-    /// Checks every rule of the model (DESIGN.md §2) and returns the validated set.
+    /// Checks every rule of the model (docs/parameters.md#rules) and returns the validated set.
     ///
     /// # Errors
     /// The first rule broken, with the value that broke it.

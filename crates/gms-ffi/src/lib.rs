@@ -85,7 +85,7 @@ use leuven_rt_status::{
     LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
 };
 
-/// Parameters of the modified Leuven model (DESIGN.md §2), SI units.
+/// Parameters of the modified Leuven model (docs/parameters.md), SI units.
 ///
 /// Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 /// and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and

@@ -9,7 +9,7 @@ create_exception!(
     leuven_rt,
     ParameterError,
     PyValueError,
-    "A friction-model parameter breaks its rule (DESIGN.md §2)."
+    "A friction-model parameter breaks its rule (docs/parameters.md#rules)."
 );
 create_exception!(
     leuven_rt,

@@ -158,7 +158,7 @@ impl CoreParams {
     }
 }
 
-/// Raises `ParameterError` unless `params` satisfies every rule of DESIGN.md §2.
+/// Raises `ParameterError` unless `params` satisfies every rule of docs/parameters.md#rules.
 #[pyfunction]
 pub fn check_params(params: &Bound<'_, PyAny>) -> PyResult<()> {
     parameter_set(params).map(|_| ())

@@ -83,7 +83,7 @@ pub fn asymmetric_stribeck() -> impl Strategy<Value = Stribeck> + Clone {
     )
 }
 
-/// g(v) as DESIGN.md §2 writes it, Fc + (Fs − Fc)·exp(−|v/Vs|^δ) with the `_neg` levels for
+/// g(v) as docs/model.md#stribeck-curve writes it, Fc + (Fs − Fc)·exp(−|v/Vs|^δ) with the `_neg` levels for
 /// v < 0, computed here from the curve's parameters: an oracle independent of `Stribeck::g`.
 pub fn stribeck_level(curve: &Stribeck, v: f64) -> f64 {
     let (fc, fs) = if v < 0.0 {
