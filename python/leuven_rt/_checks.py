@@ -1,7 +1,10 @@
-"""Checks shared by every entry point that takes signals, step sizes and scheme names.
+"""Coercion shared by every entry point that takes signals, step sizes and scheme names.
 
-The Rust bindings and the numpy reference both go through these, so the same bad input gets the
-same error from either.
+One owner per check: Python coerces types, dtypes and shapes; the values (finite samples, a
+finite, positive, normal ``dt``) are gms-core's to check on the Rust paths, which scan each
+signal once. The numpy reference has no Rust call behind it, so it adds the value checks
+(:func:`require_finite`, :func:`check_dt`), with gms-core's messages, and the same bad input gets
+the same error from either.
 """
 
 from __future__ import annotations
@@ -9,7 +12,7 @@ from __future__ import annotations
 import numbers
 import sys
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,13 +21,15 @@ from ._typing import FloatArray
 from .errors import InputError, ParameterError
 
 SCHEMES = ("implicit", "explicit")
+Scheme = Literal["implicit", "explicit"]
 
 
 def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:
     """A (B, T) C-contiguous float64 copy-free view where possible, and whether it was (T,).
 
-    Raises :class:`InputError` for values that are not real numbers, shapes other than (T,) or
-    (B, T) with B ≥ 1, and non-finite samples (naming the first one).
+    Raises :class:`InputError` for values that are not real numbers and for shapes other than
+    (T,) or (B, T) with B ≥ 1. The samples are not scanned: gms-core refuses non-finite ones
+    (naming channel and sample) on the Rust paths, :func:`require_finite` on the others.
     """
     try:
         if np.iscomplexobj(values):
@@ -42,12 +47,18 @@ def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:
         array = array.reshape(1, -1)
     if array.shape[0] == 0:
         raise InputError(f"`{name}` must have at least one channel, got shape {array.shape}")
-    finite = np.isfinite(array)
-    if not finite.all():
-        channel, sample = np.unravel_index(int(np.argmin(finite)), array.shape)
-        where = f"sample {sample}" if one_dimensional else f"channel {channel}, sample {sample}"
-        raise InputError(f"`{name}` must be finite, got {array[channel, sample]} at {where}")
     return array, one_dimensional
+
+
+def require_finite(array: FloatArray, name: str, one_dimensional: bool) -> None:
+    """Refuses a non-finite sample of ``array`` ((T,) or (B, T)) with gms-core's message, naming
+    the first one: only where no Rust call follows (the numpy reference, Python-side state)."""
+    rows = array.reshape(1, -1) if array.ndim == 1 else array
+    finite = np.isfinite(rows)
+    if not finite.all():
+        channel, sample = np.unravel_index(int(np.argmin(finite)), rows.shape)
+        where = f"sample {sample}" if one_dimensional else f"channel {channel}, sample {sample}"
+        raise InputError(f"`{name}` must be finite, got {rows[channel, sample]} at {where}")
 
 
 def as_channel_signal(values: ArrayLike, name: str, channels: int) -> tuple[FloatArray, bool]:
@@ -61,7 +72,7 @@ def as_channel_signal(values: ArrayLike, name: str, channels: int) -> tuple[Floa
 
 
 def as_channels(values: ArrayLike, name: str, channels: int) -> FloatArray:
-    """One sample per channel: a finite float64 array of shape (channels,), and nothing else."""
+    """One sample per channel: a float64 array of shape (channels,), and nothing else."""
     try:
         shape = np.shape(values)
     except ValueError:
@@ -73,11 +84,18 @@ def as_channels(values: ArrayLike, name: str, channels: int) -> FloatArray:
     return row
 
 
-def check_dt(dt: Any) -> float:
-    """The step size as a float; must be a real number, finite and > 0."""
+def as_step(dt: Any) -> float:
+    """The step size as a float: a real number, not a bool. Its value (finite, > 0, not
+    subnormal) is gms-core's to check on the Rust paths; :func:`check_dt` checks it elsewhere."""
     if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
         raise InputError(f"`dt` must be a real number, got {dt!r}")
-    value = float(dt)
+    return float(dt)
+
+
+def check_dt(dt: Any) -> float:
+    """:func:`as_step` and gms-core's rules on its value, for the paths that do not reach Rust
+    (the numpy reference): finite and > 0, and not subnormal, with gms-core's messages."""
+    value = as_step(dt)
     if not (np.isfinite(value) and value > 0.0):
         raise InputError(f"`dt` must be finite and > 0, got {value}")
     if value < np.finfo(np.float64).tiny:  # its reciprocal would overflow
@@ -97,11 +115,11 @@ def check_channels(channels: Any) -> int:
     return count
 
 
-def check_scheme(scheme: Any) -> str:
+def check_scheme(scheme: Any) -> Scheme:
     """'implicit' or 'explicit'."""
     if scheme not in SCHEMES:
         raise InputError(f"`scheme` must be 'implicit' or 'explicit', got {scheme!r}")
-    return str(scheme)
+    return cast("Scheme", str(scheme))
 
 
 def as_real_list(name: str, values: Any, length: int | None = None) -> list[float]:
@@ -117,7 +135,8 @@ def as_real_list(name: str, values: Any, length: int | None = None) -> list[floa
 
 
 def as_log(x: ArrayLike, v: ArrayLike, f: ArrayLike | None) -> list[FloatArray]:
-    """x, v (and f) as finite float64 arrays of one common shape (T,), T ≥ 1."""
+    """x, v (and f) as float64 arrays of one common shape (T,), T ≥ 1 (not scanned for
+    finiteness: gms-core does that on the Rust path, :func:`require_finite` elsewhere)."""
     named = [("x", x), ("v", v)] + ([("f", f)] if f is not None else [])
     arrays = []
     for name, values in named:

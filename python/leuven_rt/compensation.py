@@ -10,15 +10,16 @@ force carries over (see crates/gms-core/src/compensator.rs).
 
 from __future__ import annotations
 
-from typing import cast
+from typing import Literal, cast
 
 from . import _core
-from ._checks import check_dt
+from ._checks import as_step
 from ._typing import ParamsLike
 from .errors import InputError
-from .params import as_params
+from .params import Params, as_params, core_params
 
 MODES = ("feedforward", "observer")
+Mode = Literal["feedforward", "observer"]
 
 
 class Compensator(_core.CompensatorEngine):
@@ -30,16 +31,29 @@ class Compensator(_core.CompensatorEngine):
     ``reset()``: back to rest. ``output``: the last force returned.
     """
 
+    _params: Params
+
     def __new__(cls, params: ParamsLike, dt: float, mode: str = "feedforward") -> Compensator:
         if mode not in MODES:
             raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
-        # _core.pyi types CompensatorEngine.__new__ as returning CompensatorEngine, not Self.
-        engine = super().__new__(cls, as_params(params), check_dt(dt), str(mode))
-        return cast("Compensator", engine)
+        given = as_params(params)
+        # The engine gets the set validated when `given` was built, and does not check it again;
+        # gms-core checks the value of dt.
+        engine = super().__new__(cls, core_params(given), as_step(dt), cast("Mode", str(mode)))
+        engine._params = given
+        return engine
 
-    def set_params(self, params: ParamsLike) -> None:
+    # Narrower than the engine's on purpose: a Params or a mapping of its keys.
+    def set_params(self, params: ParamsLike) -> None:  # type: ignore[override]
         """Swaps in new parameters between two samples; the hysteresis force carries over."""
-        super().set_params(as_params(params))
+        given = as_params(params)
+        super().set_params(core_params(given))
+        self._params = given
+
+    @property
+    def params(self) -> Params:
+        """The parameters in use."""
+        return self._params
 
     def __repr__(self) -> str:
         return f"Compensator(mode={self.mode!r}, dt={self.dt!r}, elements={self.elements})"

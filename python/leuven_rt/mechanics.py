@@ -15,16 +15,23 @@ is the same discrete step in numpy.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _core
-from ._checks import as_channel_signal, as_channels, as_signal, check_channels, check_dt, check_scheme
+from ._checks import (
+    as_channel_signal,
+    as_channels,
+    as_signal,
+    as_step,
+    check_channels,
+    check_scheme,
+    require_finite,
+)
 from ._typing import FloatArray, ParamsLike
 from .errors import InputError
-from .params import as_params
+from .params import Params, as_params, core_params
 
 __all__ = ["MassState", "MassSystem", "MassTrajectory", "simulate_mass"]
 
@@ -61,6 +68,8 @@ class MassSystem(_core.MassEngine):
     otherwise :class:`ParameterError`. Every channel starts at rest at x = 0 (see :meth:`place`).
     """
 
+    _params: Params
+
     def __new__(
         cls,
         params: ParamsLike,
@@ -70,17 +79,24 @@ class MassSystem(_core.MassEngine):
         channels: int = 1,
         scheme: str = "implicit",
     ) -> MassSystem:
-        # _core.pyi types MassEngine.__new__ as returning MassEngine, not Self.
+        given = as_params(params)
+        # The engine gets the set validated when `given` was built, and does not check it again.
         engine = super().__new__(
             cls,
-            as_params(params),
+            core_params(given),
             mass,
             stiffness,
             drive_speed,
             check_channels(channels),
             check_scheme(scheme),
         )
-        return cast("MassSystem", engine)
+        engine._params = given
+        return engine
+
+    @property
+    def params(self) -> Params:
+        """The parameters this system was built from."""
+        return self._params
 
     def __repr__(self) -> str:
         return (
@@ -100,19 +116,21 @@ class MassSystem(_core.MassEngine):
                 raise InputError(
                     f"`{name}` must be a real number or have shape ({b},), got {value!r}"
                 ) from None
-            arrays.append(np.ascontiguousarray(as_channels(array, name, b)))
+            row = as_channels(array, name, b)
+            require_finite(row, name, True)  # _place takes the values as they are
+            arrays.append(np.ascontiguousarray(row))
         self._place(*arrays)
 
     def step_channels(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """One step of every channel with forces ``u`` of shape (B,); arrays of shape (B,)."""
         array = as_channels(u, "u", self.channels)
-        out = self._run(np.ascontiguousarray(array[:, None]), check_dt(dt))
+        out = self._run(np.ascontiguousarray(array[:, None]), as_step(dt))
         return MassTrajectory(out[0, :, 0], out[1, :, 0], out[2, :, 0])
 
     def run(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """Continues every channel over forces ``u``: (T,) for one channel or (B, T)."""
         array, one_dimensional = as_channel_signal(u, "u", self.channels)
-        out = self._run(array, check_dt(dt))
+        out = self._run(array, as_step(dt))
         if one_dimensional:
             return MassTrajectory(out[0, 0], out[1, 0], out[2, 0])
         return MassTrajectory(out[0], out[1], out[2])

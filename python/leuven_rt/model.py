@@ -3,16 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from ._checks import as_channel_signal, as_channels, check_channels, check_dt, check_scheme
+from ._checks import as_channel_signal, as_channels, as_step, check_channels, check_scheme
 from ._typing import FloatArray, ParamsLike
 from .errors import InputError
-from .params import as_params
+from .params import Params, as_params, core_params
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,21 +47,30 @@ class LeuvenModel(_core.Engine):
     ``set_state`` take and restore checkpoints; ``reset`` relaxes every channel.
     """
 
+    _params: Params
+
     def __new__(cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit") -> LeuvenModel:
-        # _core.pyi types Engine.__new__ as returning Engine, not Self.
-        engine = super().__new__(cls, as_params(params), check_channels(channels), check_scheme(scheme))
-        return cast("LeuvenModel", engine)
+        given = as_params(params)
+        # The engine gets the set validated when `given` was built, and does not check it again.
+        engine = super().__new__(cls, core_params(given), check_channels(channels), check_scheme(scheme))
+        engine._params = given
+        return engine
+
+    @property
+    def params(self) -> Params:
+        """The parameters this model was built from."""
+        return self._params
 
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
 
     def step_channels(self, v: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with velocities ``v`` of shape (B,); returns (B,) forces."""
-        return self._step_channels(as_channels(v, "v", self.channels), check_dt(dt), False)
+        return self._step_channels(as_channels(v, "v", self.channels), as_step(dt), False)
 
     def step_channels_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with positions ``x`` of shape (B,); returns (B,) forces."""
-        return self._step_channels(as_channels(x, "x", self.channels), check_dt(dt), True)
+        return self._step_channels(as_channels(x, "x", self.channels), as_step(dt), True)
 
     def run(self, v: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over velocities ``v``: (T,) for one channel or (B, T)."""
@@ -80,12 +88,12 @@ class LeuvenModel(_core.Engine):
         array, one_dimensional = as_channel_signal(x, "x", 1)
         if not one_dimensional:
             raise InputError(f"`x` must have shape (T,) for `trace_position`, got {np.shape(x)}")
-        force, z = self._run_position_deflection(np.ascontiguousarray(array[0]), check_dt(dt))
+        force, z = self._run_position_deflection(np.ascontiguousarray(array[0]), as_step(dt))
         return Trace(force, z)
 
     def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> FloatArray:
         array, one_dimensional = as_channel_signal(signal, name, self.channels)
-        out = self._run(array, check_dt(dt), name == "x")
+        out = self._run(array, as_step(dt), name == "x")
         return out[0] if one_dimensional else out
 
     @property

@@ -18,14 +18,12 @@ leave undetermined, and ``max_trace`` stops its wind-up under forgetting.
 from __future__ import annotations
 
 import numbers
-from typing import Any, cast
+from typing import Any
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _core
 from ._checks import as_log, as_real_list
-from ._core import MAX_ELEMENTS
 from ._typing import FloatArray
 from .errors import InputError, ParameterError
 
@@ -69,18 +67,14 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         max_trace: float | None = None,
         initial: ArrayLike | None = None,
     ) -> OnlineIdentifier:
+        # Python coerces types and lengths; gms-core checks the values (the number of elements of
+        # `Delta`, finite `initial`, the ranges of the settings).
         delta = as_real_list("Delta", Delta)
-        if not 1 <= len(delta) <= MAX_ELEMENTS:
-            raise ParameterError(f"`Delta` must have 1 to {MAX_ELEMENTS} elements, got {len(delta)}")
         parameters = len(delta) + len(EXTRA_TERMS)
         start = [0.0] * parameters if initial is None else as_real_list("initial", initial, parameters)
-        if not all(np.isfinite(start)):
-            raise ParameterError(f"`initial` must be finite, got {start}")
         covariance = _real("initial_covariance", initial_covariance)
         bound = 1e3 * parameters * covariance if max_trace is None else _real("max_trace", max_trace)
-        # _core.pyi types OnlineIdentifier.__new__ as returning OnlineIdentifier, not Self.
-        engine = super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
-        return cast("OnlineIdentifier", engine)
+        return super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
 
     def __repr__(self) -> str:
         return f"OnlineIdentifier(elements={self.elements}, estimate={self.estimate_dict()!r})"

@@ -1,7 +1,9 @@
 """Parameters of the modified Leuven model: one validated, immutable set, with its JSON form.
 
-The keys are those of docs/parameters.md#keys. Validation is gms-core's, called once at construction, so
-that Python and Rust accept exactly the same parameter sets.
+The keys are those of docs/parameters.md#keys. Python coerces the types; the values are validated by
+gms-core, once, at construction, so that Python and Rust accept exactly the same parameter sets. The
+validated core object is kept on the instance and handed to every engine (:func:`core_params`), which
+takes it without checking it again.
 """
 
 from __future__ import annotations
@@ -17,6 +19,10 @@ from typing import Any
 from . import _core
 from ._typing import ParamsLike
 from .errors import ParameterError
+
+#: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
+#: of :class:`Params`; looked up by name so that it types as ``Any`` whether or not _core.pyi lists it.
+_CoreParams: Any = vars(_core)["CoreParams"]
 
 #: Keys that every parameter set must give.
 REQUIRED_KEYS = ("Fc", "Fs", "Vs", "delta", "n")
@@ -78,7 +84,19 @@ class Params:
         if self.W is not None and self.Delta is not None:
             object.__setattr__(self, "W", _reals("W", self.W))
             object.__setattr__(self, "Delta", _reals("Delta", self.Delta))
-        _core.check_params(self)
+        # gms-core checks the values once (ParameterError naming the first rule broken); the
+        # validated set is kept for the engines as a plain attribute, not a dataclass field, so
+        # it stays out of repr, ==, hash, fields() and dataclasses.replace.
+        object.__setattr__(self, "_validated", _CoreParams(self))
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The fields only (for pickle and copy): the core object is rebuilt on restore."""
+        return {field.name: getattr(self, field.name) for field in fields(self)}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
+        object.__setattr__(self, "_validated", _CoreParams(self))
 
     @property
     def elements(self) -> int:
@@ -148,3 +166,9 @@ def as_params(params: ParamsLike) -> Params:
     if isinstance(params, Mapping):
         return Params.from_dict(params)
     raise ParameterError(f"`params` must be a leuven_rt.Params or a mapping, got {type(params).__name__}")
+
+
+def core_params(params: ParamsLike) -> Any:
+    """What the engine constructors take: the gms-core set validated when ``params`` became a
+    :class:`Params` (a mapping is turned into one first), so it is not read or checked again."""
+    return vars(as_params(params))["_validated"]

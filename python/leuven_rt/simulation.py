@@ -5,17 +5,18 @@ from __future__ import annotations
 from numpy.typing import ArrayLike
 
 from . import _core
-from ._checks import as_signal, check_dt, check_scheme
+from ._checks import as_signal, as_step, check_scheme
 from ._typing import FloatArray, ParamsLike
-from .params import as_params
+from .params import core_params
 
 
 def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: str) -> FloatArray:
-    params = as_params(params)
+    validated = core_params(params)
     array, one_dimensional = as_signal(signal, name)
-    dt = check_dt(dt)
-    engine = _core.Engine(params, array.shape[0], check_scheme(scheme))
-    out = engine._run(array, dt, name == "x")
+    step = as_step(dt)
+    engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
+    # gms-core scans the signal (naming channel and sample of a non-finite value) and checks dt.
+    out = engine._run(array, step, name == "x")
     return out[0] if one_dimensional else out
 
 

@@ -69,6 +69,18 @@ class MotionData:
             values.setflags(write=False)
             object.__setattr__(self, name, values)
 
+    @classmethod
+    def _from_checked(cls, checked: Mapping[str, FloatArray], source: str) -> MotionData:
+        """A record of columns that :func:`check_columns` passed and that are uniformly sampled,
+        taken as they are: a log validated on load is not validated again."""
+        record = object.__new__(cls)
+        object.__setattr__(record, "v", None)
+        object.__setattr__(record, "source", source)
+        for name, values in checked.items():
+            values.setflags(write=False)
+            object.__setattr__(record, name, values)
+        return record
+
     @property
     def samples(self) -> int:
         return int(self.t.size)
@@ -237,9 +249,10 @@ def load_columns(path: str | PathLike[str]) -> dict[str, FloatArray]:
 
 
 def as_motion_data(data: DataLike) -> MotionData:
-    """Accepts a :class:`MotionData`, a path to a ``.csv``/``.mat`` file, or a mapping with the
-    columns ``t``, ``x``, ``f`` (and optionally ``v``); validates, and resamples non-uniform time
-    stamps with a :class:`ResamplingWarning`."""
+    """Accepts a :class:`MotionData` (returned as it is: it was validated when built), a path to a
+    ``.csv``/``.mat`` file, or a mapping with the columns ``t``, ``x``, ``f`` (and optionally
+    ``v``); validates once, and resamples non-uniform time stamps with a
+    :class:`ResamplingWarning`."""
     if isinstance(data, MotionData):
         return data
     columns: Mapping[str, ArrayLike]
@@ -254,5 +267,7 @@ def as_motion_data(data: DataLike) -> MotionData:
         )
     checked: dict[str, Any] = check_columns(columns)
     if not is_uniform(checked["t"]):
-        checked = resample_uniform(checked)
-    return MotionData(checked["t"], checked["x"], checked["f"], checked.get("v"), source)
+        # New samples on a new grid: MotionData validates them, once.
+        resampled = resample_uniform(checked)
+        return MotionData(resampled["t"], resampled["x"], resampled["f"], resampled.get("v"), source)
+    return MotionData._from_checked(checked, source)

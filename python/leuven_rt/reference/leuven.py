@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from .._checks import as_signal, check_dt, check_scheme
+from .._checks import as_signal, check_dt, check_scheme, require_finite
 from .._typing import FloatArray, ParamsLike
 from ..errors import DivergenceError, InputError
 from ..params import Params, as_params
@@ -249,6 +249,7 @@ def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implici
     """
     params = as_params(params)
     array, one_dimensional = as_signal(v, "v")
+    require_finite(array, "v", one_dimensional)
     dt = check_dt(dt)
     scheme = check_scheme(scheme)
     out = np.stack([_run_channel(params, row, dt, scheme) for row in array])
@@ -259,6 +260,7 @@ def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str =
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
     params = as_params(params)
     array, one_dimensional = as_signal(x, "x")
+    require_finite(array, "x", one_dimensional)
     dt = check_dt(dt)
     scheme = check_scheme(scheme)
     # Differences of huge positions can overflow; that is reported below, not warned about.

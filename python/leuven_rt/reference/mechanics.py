@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from .._checks import as_signal, check_dt, check_scheme
+from .._checks import as_signal, check_dt, check_scheme, require_finite
 from .._typing import FloatArray, ParamsLike
 from ..errors import DivergenceError
 from ..mechanics import MassTrajectory
@@ -153,6 +153,7 @@ def simulate_mass(
     :func:`leuven_rt.simulate_mass`, whose mechanical parameters it does not validate."""
     params = as_params(params)
     array, one_dimensional = as_signal(u, "u")
+    require_finite(array, "u", one_dimensional)
     dt = check_dt(dt)
     scheme = check_scheme(scheme)
     mechanics = Mechanics(float(mass), float(stiffness), float(drive_speed))

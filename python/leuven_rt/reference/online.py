@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._checks import as_log, as_real_list
+from .._checks import as_log, as_real_list, require_finite
 from .._typing import FloatArray
 from ..errors import ParameterError
 from ..online import EXTRA_TERMS
@@ -24,6 +24,8 @@ def regressors(Delta: ArrayLike, x: ArrayLike, v: ArrayLike) -> FloatArray:
     if delta.size == 0 or not (np.isfinite(delta).all() and (delta > 0).all()):
         raise ParameterError(f"`Delta` must be at least one finite value > 0, got {delta.tolist()}")
     xs, vs = as_log(x, v, None)
+    require_finite(xs, "x", True)
+    require_finite(vs, "v", True)
     out = np.empty((xs.shape[0], delta.size + len(EXTRA_TERMS)))
     zeta = np.full(delta.size, xs[0])
     for k, position in enumerate(xs):

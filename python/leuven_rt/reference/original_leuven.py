@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from .._checks import as_signal, check_dt
+from .._checks import as_signal, check_dt, require_finite
 from .._typing import FloatArray, ParamsLike
 from ..errors import InputError, ParameterError, StackOverflowError
 from ..params import as_params
@@ -436,4 +436,5 @@ def run_velocity(model: OriginalLeuven, v: ArrayLike, dt: float) -> FloatArray:
     array, one_dimensional = as_signal(v, "v")
     if not one_dimensional:
         raise InputError(f"`v` must have shape (T,), got shape {np.shape(v)}")
+    require_finite(array, "v", one_dimensional)
     return np.array([model.step(value, dt).friction for value in array[0].tolist()])
