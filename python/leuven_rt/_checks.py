@@ -12,16 +12,15 @@ from __future__ import annotations
 import numbers
 import sys
 from collections.abc import Sequence
-from typing import Any, Literal, cast
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._typing import FloatArray
+from ._typing import FloatArray, Scheme
 from .errors import InputError, ParameterError
 
 SCHEMES = ("implicit", "explicit")
-Scheme = Literal["implicit", "explicit"]
 
 
 def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from os import PathLike
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Literal, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -24,4 +24,9 @@ ParamsLike = Union["Params", Mapping[str, Any]]
 #: mapping of the columns ``t``, ``x``, ``f`` (and optionally ``v``).
 DataLike = Union["MotionData", str, "PathLike[str]", Mapping[str, ArrayLike]]
 
-__all__ = ["BoolArray", "DataLike", "FloatArray", "ParamsLike"]
+#: The integration scheme of a step (docs/model.md#discrete-step).
+Scheme = Literal["implicit", "explicit"]
+#: What a compensator takes each sample: the desired velocity, or the measured position.
+Mode = Literal["feedforward", "observer"]
+
+__all__ = ["BoolArray", "DataLike", "FloatArray", "Mode", "ParamsLike", "Scheme"]

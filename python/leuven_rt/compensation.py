@@ -10,16 +10,15 @@ force carries over (see crates/gms-core/src/compensator.rs).
 
 from __future__ import annotations
 
-from typing import Literal, cast
+from typing import cast
 
 from . import _core
 from ._checks import as_step
-from ._typing import ParamsLike
+from ._typing import Mode, ParamsLike
 from .errors import InputError
 from .params import Params, as_params, core_params
 
-MODES = ("feedforward", "observer")
-Mode = Literal["feedforward", "observer"]
+MODES: tuple[Mode, ...] = ("feedforward", "observer")
 
 
 class Compensator(_core.CompensatorEngine):
@@ -33,7 +32,7 @@ class Compensator(_core.CompensatorEngine):
 
     _params: Params
 
-    def __new__(cls, params: ParamsLike, dt: float, mode: str = "feedforward") -> Compensator:
+    def __new__(cls, params: ParamsLike, dt: float, mode: Mode = "feedforward") -> Compensator:
         if mode not in MODES:
             raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
         given = as_params(params)

@@ -29,7 +29,7 @@ from ._checks import (
     check_scheme,
     require_finite,
 )
-from ._typing import FloatArray, ParamsLike
+from ._typing import FloatArray, ParamsLike, Scheme
 from .errors import InputError
 from .params import Params, as_params, core_params
 
@@ -77,7 +77,7 @@ class MassSystem(_core.MassEngine):
         stiffness: float = 0.0,
         drive_speed: float = 0.0,
         channels: int = 1,
-        scheme: str = "implicit",
+        scheme: Scheme = "implicit",
     ) -> MassSystem:
         given = as_params(params)
         # The engine gets the set validated when `given` was built, and does not check it again.
@@ -169,7 +169,7 @@ def simulate_mass(
     drive_speed: float = 0.0,
     position: float = 0.0,
     velocity: float = 0.0,
-    scheme: str = "implicit",
+    scheme: Scheme = "implicit",
 ) -> MassTrajectory:
     """The mass driven by applied force ``u`` [N], (T,) or (B, T) for B independent channels.
 

@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import as_channel_signal, as_channels, as_step, check_channels, check_scheme
-from ._typing import FloatArray, ParamsLike
+from ._typing import FloatArray, ParamsLike, Scheme
 from .errors import InputError
 from .params import Params, as_params, core_params
 
@@ -49,7 +49,7 @@ class LeuvenModel(_core.Engine):
 
     _params: Params
 
-    def __new__(cls, params: ParamsLike, channels: int = 1, scheme: str = "implicit") -> LeuvenModel:
+    def __new__(cls, params: ParamsLike, channels: int = 1, scheme: Scheme = "implicit") -> LeuvenModel:
         given = as_params(params)
         # The engine gets the set validated when `given` was built, and does not check it again.
         engine = super().__new__(cls, core_params(given), check_channels(channels), check_scheme(scheme))

@@ -6,11 +6,11 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._checks import as_signal, as_step, check_scheme
-from ._typing import FloatArray, ParamsLike
+from ._typing import FloatArray, ParamsLike, Scheme
 from .params import core_params
 
 
-def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: str) -> FloatArray:
+def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: Scheme) -> FloatArray:
     validated = core_params(params)
     array, one_dimensional = as_signal(signal, name)
     step = as_step(dt)
@@ -20,7 +20,7 @@ def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: st
     return out[0] if one_dimensional else out
 
 
-def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
+def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: Scheme = "implicit") -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
@@ -30,6 +30,6 @@ def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implici
     return _run(params, v, "v", dt, scheme)
 
 
-def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
+def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: Scheme = "implicit") -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
     return _run(params, x, "x", dt, scheme)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._typing import FloatArray
+from .._typing import FloatArray, Scheme
 from ..errors import DivergenceError
 from ..mechanics import simulate_mass
 from ..params import Params
@@ -46,7 +46,7 @@ LUGRE = Params(
 AMPLITUDE = 0.01
 FREQUENCY = 5.0
 
-SCHEMES = ("explicit", "implicit")
+SCHEMES: tuple[Scheme, ...] = ("explicit", "implicit")
 
 
 @dataclass(frozen=True)
@@ -89,7 +89,7 @@ def _compare(
     params: Params,
     v: FloatArray,
     dt: float,
-    scheme: str,
+    scheme: Scheme,
     truth: FloatArray,
     rate: float,
 ) -> AccuracyRow:
