@@ -14,9 +14,9 @@ from typing import cast
 
 from . import _core
 from ._checks import as_step
-from ._typing import Mode, ParamsLike
+from ._typing import Mode
 from .errors import InputError
-from .params import Params, as_params, core_params
+from .params import Params, ParamsLike, as_params, core_params
 
 MODES: tuple[Mode, ...] = ("feedforward", "observer")
 

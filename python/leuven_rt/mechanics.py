@@ -29,9 +29,9 @@ from ._checks import (
     check_scheme,
     require_finite,
 )
-from ._typing import FloatArray, ParamsLike, Scheme
+from ._typing import FloatArray, Scheme
 from .errors import InputError
-from .params import Params, as_params, core_params
+from .params import Params, ParamsLike, as_params, core_params
 
 __all__ = ["MassState", "MassSystem", "MassTrajectory", "simulate_mass"]
 

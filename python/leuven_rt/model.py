@@ -9,9 +9,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import as_channel_signal, as_channels, as_step, check_channels, check_scheme
-from ._typing import FloatArray, ParamsLike, Scheme
+from ._typing import FloatArray, Scheme
 from .errors import InputError
-from .params import Params, as_params, core_params
+from .params import Params, ParamsLike, as_params, core_params
 
 
 @dataclass(frozen=True, eq=False)

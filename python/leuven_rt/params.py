@@ -17,7 +17,6 @@ from pathlib import Path
 from typing import Any
 
 from . import _core
-from ._typing import ParamsLike
 from .errors import ParameterError
 
 #: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
@@ -157,6 +156,10 @@ class Params:
     def load(cls, path: str | PathLike[str]) -> Params:
         """Reads a parameter file."""
         return cls.from_json(Path(path).read_text(encoding="utf-8"))
+
+
+#: A parameter set: a :class:`Params`, or a mapping with its keys.
+ParamsLike = Params | Mapping[str, Any]
 
 
 def as_params(params: ParamsLike) -> Params:

@@ -6,8 +6,8 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._checks import as_signal, as_step, check_scheme
-from ._typing import FloatArray, ParamsLike, Scheme
-from .params import core_params
+from ._typing import FloatArray, Scheme
+from .params import ParamsLike, core_params
 
 
 def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: Scheme) -> FloatArray:

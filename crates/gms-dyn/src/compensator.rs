@@ -8,7 +8,8 @@ use gms_core::{Hysteresis, Mode, Params, State};
 
 use crate::channels::Memory;
 use crate::error::Error;
-use crate::params::{with_params, HysteresisKind, InParameterSet, ParameterSet, RawParams};
+use crate::kind::HysteresisKind;
+use crate::params::{with_params, InParameterSet, ParameterSet, RawParams};
 
 /// A copy of a compensator's model state.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@ use core::fmt;
 
 use gms_core::{Field, InChannel};
 
-use crate::params::HysteresisKind;
+use crate::kind::HysteresisKind;
 use crate::MAX_ELEMENTS;
 
 /// Why a parameter set, an input or a call was refused; [`Display`](fmt::Display) writes the

@@ -22,6 +22,7 @@ mod channels;
 mod compensator;
 mod error;
 mod friction;
+mod kind;
 mod mass;
 mod online;
 mod params;
@@ -30,9 +31,10 @@ mod slip;
 pub use compensator::{Compensator, CompensatorState};
 pub use error::{Error, ErrorKind};
 pub use friction::{FrictionBank, Input};
+pub use kind::HysteresisKind;
 pub use mass::{MassBank, MassStates, Mechanics};
 pub use online::OnlineIdentifier;
-pub use params::{HysteresisKind, ParameterSet, RawElements, RawParams};
+pub use params::{ParameterSet, RawElements, RawParams};
 pub use slip::slip_responses;
 
 /// The largest number of Maxwell-slip elements a run-time parameter set may have.

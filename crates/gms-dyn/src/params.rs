@@ -5,13 +5,12 @@
 //! ([`with_params`]) and over a bare element count ([`with_element_count`]), all spell out
 //! 1..=32, which must be [`MAX_ELEMENTS`].
 
-use core::fmt;
-
 use gms_core::{Hysteresis, Linear, LuGreParams, MaxwellSlip, Params, Stribeck};
 use seq_macro::seq;
 
 use crate::channels::Memory;
 use crate::error::Error;
+use crate::kind::HysteresisKind;
 use crate::MAX_ELEMENTS;
 
 // The macros below and the variants of `ParameterSet` are written for 1..=32 elements.
@@ -82,37 +81,6 @@ pub struct RawParams<'a> {
     pub sigma0: Option<f64>,
     /// Maxwell-slip elements, if that is the kind given (possibly empty).
     pub elements: Option<RawElements<'a>>,
-}
-
-/// The kind of hysteresis of a parameter set, and its size.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum HysteresisKind {
-    /// Linear (LuGre-like) hysteresis `sigma0`.
-    Linear,
-    /// Maxwell slip with this many elements.
-    Maxwell {
-        /// Number of elements.
-        elements: usize,
-    },
-}
-
-impl HysteresisKind {
-    /// Number of Maxwell-slip elements (0 for linear hysteresis).
-    pub fn elements(self) -> usize {
-        match self {
-            HysteresisKind::Linear => 0,
-            HysteresisKind::Maxwell { elements } => elements,
-        }
-    }
-}
-
-impl fmt::Display for HysteresisKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            HysteresisKind::Linear => f.write_str("linear hysteresis `sigma0`"),
-            HysteresisKind::Maxwell { elements } => write!(f, "{elements} Maxwell-slip elements"),
-        }
-    }
 }
 
 impl RawParams<'_> {

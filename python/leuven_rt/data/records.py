@@ -17,13 +17,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
-from typing import Any, cast
+from typing import Any, Union, cast
 
 import numpy as np
 import scipy.io
 from numpy.typing import ArrayLike, NDArray
 
-from .._typing import DataLike, FloatArray
+from .._typing import FloatArray
 from ..errors import DataError, ResamplingWarning
 
 #: Fewer samples than this cannot be filtered, split into training and held-out parts, and fitted.
@@ -94,6 +94,11 @@ class MotionData:
         """Samples ``start:stop`` as a new record."""
         v = None if self.v is None else self.v[start:stop]
         return MotionData(self.t[start:stop], self.x[start:stop], self.f[start:stop], v, self.source)
+
+
+#: A log: a :class:`MotionData`, a path to a ``.csv`` or EMPS ``.mat`` file, or a mapping of
+#: the columns ``t``, ``x``, ``f`` (and optionally ``v``).
+DataLike = Union[MotionData, str, "PathLike[str]", Mapping[str, ArrayLike]]
 
 
 def _column(name: str, values: ArrayLike) -> FloatArray:

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._typing import FloatArray, ParamsLike
-from ..params import Params, as_params
+from .._typing import FloatArray
+from ..params import Params, ParamsLike, as_params
 from ..simulation import simulate_position
 from .records import MotionData
 from .scenarios import standard_params

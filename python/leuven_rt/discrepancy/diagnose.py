@@ -15,8 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 from tqdm import tqdm
 
-from .._typing import DataLike
-from ..data.records import as_motion_data
+from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
 from .effects import CATALOGUE, parse_effects
 from .features import compute_features

@@ -21,8 +21,8 @@ import numpy as np
 from tqdm import tqdm
 
 from .._core import MAX_ELEMENTS
-from .._typing import BoolArray, DataLike
-from ..data.records import as_motion_data
+from .._typing import BoolArray
+from ..data.records import DataLike, as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
 from ..data.signals import Derivatives, estimate_derivatives, noise_floor
 from ..errors import DataError, InputError

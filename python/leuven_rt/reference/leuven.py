@@ -28,9 +28,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from .._checks import as_signal, check_dt, check_scheme, require_finite
-from .._typing import FloatArray, ParamsLike
+from .._typing import FloatArray
 from ..errors import DivergenceError, InputError
-from ..params import Params, as_params
+from ..params import Params, ParamsLike, as_params
 
 #: Relative tolerance of the root: the smallest that ``brentq`` accepts (4 ulps), which is also
 #: what the Rust solver stops at.

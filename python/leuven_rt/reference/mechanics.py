@@ -31,10 +31,10 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from .._checks import as_signal, check_dt, check_scheme, require_finite
-from .._typing import FloatArray, ParamsLike
+from .._typing import FloatArray
 from ..errors import DivergenceError
 from ..mechanics import MassTrajectory
-from ..params import Params, as_params
+from ..params import Params, ParamsLike, as_params
 from .leuven import hysteresis_of, phi, step, stribeck_level
 
 #: Relative tolerance of the root (4 ulps, what brentq accepts and the Rust solver stops at).

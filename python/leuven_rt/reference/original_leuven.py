@@ -42,9 +42,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from .._checks import as_signal, check_dt, require_finite
-from .._typing import FloatArray, ParamsLike
+from .._typing import FloatArray
 from ..errors import InputError, ParameterError, StackOverflowError
-from ..params import as_params
+from ..params import ParamsLike, as_params
 from .leuven import phi, stribeck_level
 from .mechanics import implicit_mass_step
 

@@ -10,8 +10,7 @@ import math
 
 import numpy as np
 
-from .._typing import DataLike
-from ..data.records import as_motion_data
+from ..data.records import DataLike, as_motion_data
 from ..data.signals import decimate
 from ..discrepancy.features import Features, compute_features
 from ..discrepancy.model import ModelFit
