@@ -59,6 +59,10 @@ pub enum Field {
     initial,
     /// Regressor of recursive least squares.
     regressor,
+    /// Deflection z of a channel state written by a caller.
+    z,
+    /// Element positions ζ of a channel state written by a caller.
+    zeta,
 }
 
 impl Field {
@@ -90,6 +94,8 @@ impl Field {
             Field::max_trace => "max_trace",
             Field::initial => "initial",
             Field::regressor => "regressor",
+            Field::z => "z",
+            Field::zeta => "zeta",
         }
     }
 }
@@ -151,6 +157,44 @@ pub enum Error {
     },
     /// A Maxwell-slip bank needs at least one element.
     NoElements,
+    /// `sum(W)` overflows: the saturation forces are too large for f64 arithmetic.
+    ForceSumOverflow {
+        /// Index of the largest `W[i]`.
+        index: usize,
+        /// That largest `W[i]`.
+        largest: f64,
+    },
+    /// The stiffness `W[index]/Delta[index]` of one element overflows.
+    StiffnessOverflow {
+        /// Index of the element.
+        index: usize,
+        /// Its `W[index]`.
+        w: f64,
+        /// Its `Delta[index]`.
+        delta: f64,
+    },
+    /// The total stiffness Σ `W[i]/Delta[i]` of the bank overflows although each term is finite.
+    StiffnessSumOverflow,
+    /// `Delta[index]` is narrower than [`MIN_DELTA_RATIO`](crate::MIN_DELTA_RATIO) times the
+    /// widest `Delta`: below the rounding unit of z, the element's window cannot be resolved.
+    DeltaTooNarrow {
+        /// Index of the narrow element.
+        index: usize,
+        /// Its `Delta[index]`.
+        value: f64,
+        /// The widest `Delta`.
+        widest: f64,
+    },
+    /// A written channel state has element `index` outside its window: |z − ζᵢ| > Δᵢ (beyond a
+    /// rounding tolerance), or a non-finite ζᵢ.
+    StateOutsideWindow {
+        /// Index of the element.
+        index: usize,
+        /// The deflection z − ζᵢ that came.
+        deflection: f64,
+        /// The element's `Delta[index]`, the largest |z − ζᵢ| allowed.
+        limit: f64,
+    },
     /// `sum(W) <= max(Fs, Fs_neg)`: the hysteresis force can never balance the Stribeck curve.
     ElementsTooWeak {
         /// The largest hysteresis force, sum(W).
@@ -324,6 +368,50 @@ impl Error {
                 Shown(value)
             ),
             Error::NoElements => f.write_str("`W` and `Delta` need at least one element"),
+            Error::ForceSumOverflow { index, largest } => write!(
+                f,
+                "`sum(W)` must be finite, got elements that add up to more than 1.8e308 \
+                 (largest `W[{index}]` = {}): the saturation forces are too large for f64 \
+                 arithmetic (are they in SI units?)",
+                Shown(largest)
+            ),
+            Error::StiffnessOverflow { index, w, delta } => write!(
+                f,
+                "the stiffness `W[{index}]`/`Delta[{index}]` = {}/{} must be finite, got a \
+                 quotient that overflows: the element is too stiff for f64 arithmetic",
+                Shown(w),
+                Shown(delta)
+            ),
+            Error::StiffnessSumOverflow => f.write_str(
+                "the total stiffness sum(W[i]/Delta[i]) must be finite, got a sum that \
+                 overflows: the elements are too stiff for f64 arithmetic",
+            ),
+            Error::DeltaTooNarrow {
+                index,
+                value,
+                widest,
+            } => write!(
+                f,
+                "`Delta[{index}]` must be >= 2^-26 (about 1.5e-8) times the widest Delta = {}, \
+                 i.e. >= {}, got {}: z is resolved only to about 2.2e-16 × {}, so a narrower \
+                 element's window would be decided by rounding (docs/parameters.md#rules)",
+                Shown(widest),
+                Shown(widest * crate::MIN_DELTA_RATIO),
+                Shown(value),
+                Shown(widest)
+            ),
+            Error::StateOutsideWindow {
+                index,
+                deflection,
+                limit,
+            } => write!(
+                f,
+                "`zeta[{index}]` must be within `Delta[{index}]` = {} of z, i.e. |z - \
+                 zeta[{index}]| <= {}, got z - zeta[{index}] = {}",
+                Shown(limit),
+                Shown(limit),
+                Shown(deflection)
+            ),
             Error::ElementsTooWeak { sum, peak } => write!(
                 f,
                 "`sum(W)` must be > max(`Fs`, `Fs_neg`) = {}, got sum(W) = {}: the hysteresis \
@@ -490,7 +578,47 @@ impl PartialEq for Error {
                     value: v,
                 },
             ) => field == other && index == i && same(value, v),
-            (Error::NoElements, Error::NoElements) => true,
+            (Error::NoElements, Error::NoElements)
+            | (Error::StiffnessSumOverflow, Error::StiffnessSumOverflow) => true,
+            (
+                Error::ForceSumOverflow { index, largest },
+                Error::ForceSumOverflow {
+                    index: i,
+                    largest: l,
+                },
+            ) => index == i && same(largest, l),
+            (
+                Error::StiffnessOverflow { index, w, delta },
+                Error::StiffnessOverflow {
+                    index: i,
+                    w: w2,
+                    delta: d,
+                },
+            ) => index == i && same(w, w2) && same(delta, d),
+            (
+                Error::DeltaTooNarrow {
+                    index,
+                    value,
+                    widest,
+                },
+                Error::DeltaTooNarrow {
+                    index: i,
+                    value: v,
+                    widest: w,
+                },
+            ) => index == i && same(value, v) && same(widest, w),
+            (
+                Error::StateOutsideWindow {
+                    index,
+                    deflection,
+                    limit,
+                },
+                Error::StateOutsideWindow {
+                    index: i,
+                    deflection: d,
+                    limit: l,
+                },
+            ) => index == i && same(deflection, d) && same(limit, l),
             (Error::ElementsTooWeak { sum, peak }, Error::ElementsTooWeak { sum: s, peak: p }) => {
                 same(sum, s) && same(peak, p)
             }

@@ -41,7 +41,7 @@ mod stribeck;
 
 pub use compensator::{evaluation_bound, Compensator, Mode};
 pub use error::{Error, Field, InChannel, Shown};
-pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial};
+pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial, MIN_DELTA_RATIO};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};

@@ -107,6 +107,26 @@ impl<H: Hysteresis> Params<H> {
         }
     }
 
+    /// Checks a channel state written from outside (not produced by stepping): z finite, the
+    /// previous position finite if there is one, and every element within its window,
+    /// |z − ζᵢ| ≤ Δᵢ up to a rounding tolerance of 4 ulps of max(|z|, Δᵢ), so that any state
+    /// read from a channel passes. A state outside its windows would move the elements at
+    /// v = 0 and give a force that does not match it.
+    ///
+    /// # Errors
+    /// [`Error::NotFiniteValue`] for `z` or `x` (the previous position), or
+    /// [`Error::StateOutsideWindow`] naming the first element out of its window.
+    pub fn check_state(&self, state: &State<H::Memory>) -> Result<(), Error> {
+        let not_finite = |field, value: f64| Error::NotFiniteValue { field, value };
+        if !state.z.is_finite() {
+            return Err(not_finite(Field::z, state.z));
+        }
+        if let Some(previous) = state.last_position.filter(|x| !x.is_finite()) {
+            return Err(not_finite(Field::x, previous));
+        }
+        self.hysteresis.check_memory(&state.memory, state.z)
+    }
+
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
         let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);

@@ -244,17 +244,34 @@ fn quadratic_root(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f64 {
     // P at the zero of u; the root lies right of it (u > 0) iff P(s_zero) ≤ 0.
     let p_zero = s_zero + q;
     let sigma = if p_zero <= 0.0 { 1.0 } else { -1.0 };
+    // For a stiff piece (β > 1) the forms are divided through by β, so that β² (which
+    // overflows for stiffnesses above about 1e154 N/m) is never formed; for a soft one they are
+    // not, so that 1/β is never formed.
+    let stiff = beta > 1.0;
     if sigma * alpha >= 0.0 {
-        // Same side as s = 0: σ·c·β²·s² + (1 + 2c·|α|·β)·s + r = 0.
+        // Same side as s = 0: σ·c·β²·s² + (1 + 2c·|α|·β)·s + r = 0, or in t = β·s,
+        // σ·c·t² + (1/β + 2c·|α|)·t + r = 0.
+        if stiff {
+            let a1 = 1.0 / beta + 2.0 * c * libm::fabs(alpha);
+            let discriminant = (a1 * a1 - 4.0 * sigma * c * r).max(0.0);
+            return -2.0 * r / (a1 + libm::sqrt(discriminant)) / beta;
+        }
         let a2 = sigma * c * beta * beta;
         let a1 = 1.0 + 2.0 * c * libm::fabs(alpha) * beta;
         let discriminant = (a1 * a1 - 4.0 * a2 * r).max(0.0);
         -2.0 * r / (a1 + libm::sqrt(discriminant))
     } else {
-        // Across the zero of u: in w = α + β·s, σ·c·β·w² + w + (β·P(s_zero)) = 0.
-        let a2 = sigma * c * beta;
-        let a0 = beta * p_zero;
-        let w = -2.0 * a0 / (1.0 + libm::sqrt((1.0 - 4.0 * a2 * a0).max(0.0)));
+        // Across the zero of u: in w = α + β·s, σ·c·β·w² + w + (β·P(s_zero)) = 0, or divided
+        // by β, σ·c·w² + w/β + P(s_zero) = 0.
+        let w = if stiff {
+            let inverse = 1.0 / beta;
+            -2.0 * p_zero
+                / (inverse + libm::sqrt((inverse * inverse - 4.0 * sigma * c * p_zero).max(0.0)))
+        } else {
+            let a2 = sigma * c * beta;
+            let a0 = beta * p_zero;
+            -2.0 * a0 / (1.0 + libm::sqrt((1.0 - 4.0 * a2 * a0).max(0.0)))
+        };
         (w - alpha) / beta
     }
 }

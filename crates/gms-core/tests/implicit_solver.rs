@@ -268,3 +268,38 @@ fn regression_maxwell_asymmetric_reversal() {
     };
     assert_solved(&params, &state, 1.0, 0.01);
 }
+
+/// With n = 2 and stiffnesses above about 1e154 N/m (here Δ = 1e-160 with W = 1), the quadratic
+/// of the step formed c·β², which overflowed: the step returned z unchanged and the model stopped
+/// moving while |v| > 0. The model is scale-invariant in Δ (with σ1 = 0), so a bank of tiny
+/// elements must trace z/Δ and the force of a bank of ordinary ones.
+#[test]
+fn extremely_stiff_elements_still_move() {
+    let bank = |scale: f64| -> LeuvenParams<2> {
+        let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
+        let elements = MaxwellSlip::new([1.0, 1.0], [scale, 2.0 * scale]).expect("valid bank");
+        Params::new(stribeck, 2.0, 0.0, 0.4, elements).expect("valid parameters")
+    };
+    let trace = |scale: f64| -> Vec<(f64, f64)> {
+        let params = bank(scale);
+        let mut state = params.relaxed_state();
+        (0..400)
+            .map(|k| {
+                let v = 1e-3 * (f64::from(k) * 0.03).sin();
+                let force = params
+                    .step(&mut state, v, 1e-3, Scheme::Implicit)
+                    .expect("valid step");
+                (state.z / scale, force)
+            })
+            .collect()
+    };
+    let ordinary = trace(1e-100);
+    for scale in [1e-160, 1e-200, 1e-300] {
+        for (k, (tiny, ordinary)) in trace(scale).iter().zip(&ordinary).enumerate() {
+            assert!(
+                (tiny.0 - ordinary.0).abs() <= 1e-12 && (tiny.1 - ordinary.1).abs() <= 1e-12,
+                "Delta = {scale}: sample {k} gives z/Delta, force = {tiny:?}, expected {ordinary:?}"
+            );
+        }
+    }
+}

@@ -5,7 +5,10 @@
 //! |---|---|---|
 //! | `Fc`, `Fs`, `Vs`, `delta`, `Fc_neg`, `Fs_neg` finite and > 0, not subnormal | `Stribeck::new/asymmetric` | `NotPositive(field)` |
 //! | `Fs ≥ Fc`, `Fs_neg ≥ Fc_neg` | `Stribeck::new/asymmetric` | `StaticBelowCoulomb(field)` |
-//! | each `W[i]`, `Delta[i]` finite and > 0 (and W/Δ finite) | `MaxwellSlip::new` | `Element { field, index }` |
+//! | each `W[i]`, `Delta[i]` finite and > 0 | `MaxwellSlip::new` | `Element { field, index }` |
+//! | `sum(W)` finite | `MaxwellSlip::new` | `ForceSumOverflow { index }` (the largest `W`) |
+//! | each `W[i]/Delta[i]` finite, and their sum | `MaxwellSlip::new` | `StiffnessOverflow { index }`, `StiffnessSumOverflow` |
+//! | each `Delta[i] ≥ MIN_DELTA_RATIO · max(Delta)` | `MaxwellSlip::new` | `DeltaTooNarrow { index }` |
 //! | at least one element | `MaxwellSlip::new` | `NoElements` |
 //! | `sigma0` finite and > 0 | `Linear::new` | `NotPositive(sigma0)` |
 //! | `n` finite and > 0 | `Params::new` | `NotPositive(n)` |
@@ -17,7 +20,7 @@
 mod common;
 
 use common::{log_uniform, saturation_forces, stribeck};
-use gms_core::{Error, Field, Hysteresis, Linear, MaxwellSlip, Params, Stribeck};
+use gms_core::{Error, Field, Hysteresis, Linear, MaxwellSlip, Params, Stribeck, MIN_DELTA_RATIO};
 use proptest::array::uniform;
 use proptest::prelude::*;
 
@@ -142,16 +145,92 @@ fn elements_must_be_positive_and_present() {
             );
         }
     }
-    // A break deflection so small that the stiffness W/Δ overflows is not a spring either.
+    assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));
+}
+
+/// Finite values whose sum or quotient overflows are refused at construction, naming the real
+/// cause: before, `W = [1e308; 4]` was accepted (and every step then failed with a message about
+/// the explicit scheme), and `W = [1.7e308; 4]` blamed `Delta[0]`.
+#[test]
+fn overflowing_sums_and_stiffnesses_are_refused() {
+    for w in [1e308, 1.7e308] {
+        for delta in [1.0, 1e-6] {
+            let refused = MaxwellSlip::new([w; 4], [delta; 4]);
+            assert_eq!(
+                refused,
+                Err(Error::ForceSumOverflow {
+                    index: 0,
+                    largest: w
+                }),
+                "W = {w}, Delta = {delta}"
+            );
+            let message = refused.unwrap_err().to_string();
+            assert!(
+                message.starts_with("`sum(W)` must be finite") && message.contains("`W[0]`"),
+                "{message}"
+            );
+        }
+    }
+    // The largest W is named, not the first.
     assert_eq!(
-        MaxwellSlip::new([1.0, 2.0], [1e-6, 1e-310]),
-        Err(Error::Element {
-            field: Field::Delta,
+        MaxwellSlip::new([1e300, 1.7e308, 1.0e308], [1.0; 3]),
+        Err(Error::ForceSumOverflow {
             index: 1,
-            value: 1e-310
+            largest: 1.7e308
         })
     );
-    assert_eq!(MaxwellSlip::<0>::new([], []), Err(Error::NoElements));
+    // A break deflection so small that the stiffness W/Δ overflows is not a spring either.
+    let refused = MaxwellSlip::new([1.0, 2.0], [1e-6, 1e-310]);
+    assert_eq!(
+        refused,
+        Err(Error::StiffnessOverflow {
+            index: 1,
+            w: 2.0,
+            delta: 1e-310
+        })
+    );
+    assert_eq!(
+        refused.unwrap_err().to_string(),
+        "the stiffness `W[1]`/`Delta[1]` = 2.0/1e-310 must be finite, got a quotient that \
+         overflows: the element is too stiff for f64 arithmetic"
+    );
+    // Each stiffness finite (1e308), their sum not.
+    assert_eq!(
+        MaxwellSlip::new([1e300; 2], [1e-8; 2]),
+        Err(Error::StiffnessSumOverflow)
+    );
+    assert!(MaxwellSlip::new([1e300; 2], [1e-7; 2]).is_ok());
+}
+
+/// An element narrower than 2^-26 of the widest is refused: its window is below the rounding
+/// unit of z, the implicit step cannot locate its root, and two correct implementations (this
+/// one and the numpy reference) disagreed by up to 25 % at `Delta[0]` = 1e-18 or 1e-22.
+#[test]
+fn elements_narrower_than_the_rounding_of_z_are_refused() {
+    assert_eq!(MIN_DELTA_RATIO, f64::EPSILON.sqrt());
+    for narrow in [1e-14, 1e-18, 1e-20, 1e-22, 1e-300] {
+        let refused = MaxwellSlip::new([0.5; 4], [narrow, 1e-6, 2e-6, 4e-6]);
+        assert_eq!(
+            refused,
+            Err(Error::DeltaTooNarrow {
+                index: 0,
+                value: narrow,
+                widest: 4e-6
+            }),
+            "Delta[0] = {narrow}"
+        );
+        let message = refused.unwrap_err().to_string();
+        assert!(
+            message.starts_with("`Delta[0]` must be >= 2^-26 (about 1.5e-8) times the widest")
+                && message.contains("rounding"),
+            "{message}"
+        );
+    }
+    // On the edge: accepted; any relative spread is fine at any absolute scale.
+    let widest = 4e-6;
+    assert!(MaxwellSlip::new([0.5; 2], [widest * MIN_DELTA_RATIO, widest]).is_ok());
+    assert!(MaxwellSlip::new([0.5; 2], [(widest * MIN_DELTA_RATIO).next_down(), widest]).is_err());
+    assert!(MaxwellSlip::new([0.5; 2], [1e-300, 2e-300]).is_ok());
 }
 
 #[test]

@@ -3,6 +3,29 @@
 use super::{Hysteresis, Trial};
 use crate::error::{Error, Field};
 
+/// The narrowest break deflection allowed, relative to the widest: 2⁻²⁶ = √ε ≈ 1.49e-8.
+///
+/// z lives on the scale of the widest element and is resolved to ε = 2⁻⁵² of it, so element i
+/// sees its deflection rounded to ε·max Δ, a fraction ε·max Δ/Δᵢ of its window. The rule keeps
+/// that fraction at most √ε: every element's force is resolved to about 8 digits. Narrower
+/// elements turn into relays whose switching the rounding of z decides, and the implicit step's
+/// root can then no longer be located (two correct implementations disagreed by 25 %).
+pub const MIN_DELTA_RATIO: f64 = 1.0 / 67_108_864.0;
+
+/// The position of the largest value and the value (the first on ties).
+fn largest(values: &[f64]) -> (usize, f64) {
+    values.iter().enumerate().fold(
+        (0, f64::NEG_INFINITY),
+        |(i, a), (j, &b)| {
+            if b > a {
+                (j, b)
+            } else {
+                (i, a)
+            }
+        },
+    )
+}
+
 /// Independent partial sums in the element loops.
 const LANES: usize = 4;
 
@@ -35,27 +58,61 @@ pub struct MaxwellSlip<const N: usize> {
 }
 
 impl<const N: usize> MaxwellSlip<N> {
-    /// Every `w[i]` and `delta[i]` must be finite and > 0, and N ≥ 1.
+    /// Every `w[i]` and `delta[i]` must be finite and > 0, and N ≥ 1; `sum(W)`, each stiffness
+    /// `W[i]/Delta[i]` and their sum must be finite; and every `delta[i]` must be at least
+    /// [`MIN_DELTA_RATIO`] times the largest (docs/parameters.md#rules).
+    ///
+    /// # Errors
+    /// The first rule broken, naming the element: [`Error::Element`] (`W` first, then `Delta`),
+    /// [`Error::ForceSumOverflow`], [`Error::StiffnessOverflow`],
+    /// [`Error::StiffnessSumOverflow`], [`Error::DeltaTooNarrow`].
     pub fn new(w: [f64; N], delta: [f64; N]) -> Result<Self, Error> {
         if N == 0 {
             return Err(Error::NoElements);
         }
-        let mut stiffness = [0.0; N];
-        for index in 0..N {
-            if !(w[index].is_finite() && w[index] > 0.0) {
+        for (index, &value) in w.iter().enumerate() {
+            if !(value.is_finite() && value > 0.0) {
                 return Err(Error::Element {
                     field: Field::W,
                     index,
-                    value: w[index],
+                    value,
                 });
             }
-            stiffness[index] = w[index] / delta[index];
-            // A break deflection so small that W/Δ overflows is not a usable spring either.
-            if !(delta[index].is_finite() && delta[index] > 0.0 && stiffness[index].is_finite()) {
+        }
+        if !w.iter().sum::<f64>().is_finite() {
+            let (index, largest) = largest(&w);
+            return Err(Error::ForceSumOverflow { index, largest });
+        }
+        for (index, &value) in delta.iter().enumerate() {
+            if !(value.is_finite() && value > 0.0) {
                 return Err(Error::Element {
                     field: Field::Delta,
                     index,
-                    value: delta[index],
+                    value,
+                });
+            }
+        }
+        let mut stiffness = [0.0; N];
+        for index in 0..N {
+            stiffness[index] = w[index] / delta[index];
+            if !stiffness[index].is_finite() {
+                return Err(Error::StiffnessOverflow {
+                    index,
+                    w: w[index],
+                    delta: delta[index],
+                });
+            }
+        }
+        if !stiffness.iter().sum::<f64>().is_finite() {
+            return Err(Error::StiffnessSumOverflow);
+        }
+        let (_, widest) = largest(&delta);
+        for (index, &value) in delta.iter().enumerate() {
+            if value < MIN_DELTA_RATIO * widest {
+                return Err(Error::DeltaTooNarrow {
+                    index,
+                    value,
+                    widest,
                 });
             }
         }
@@ -168,6 +225,22 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
 
     fn max_force(&self) -> f64 {
         self.w.iter().sum()
+    }
+
+    fn check_memory(&self, zeta: &[f64; N], z: f64) -> Result<(), Error> {
+        for index in 0..N {
+            let (deflection, limit) = (z - zeta[index], self.delta[index]);
+            // What the getter reads back after a slip is z − (z − Δ), a few ulps off Δ.
+            let tolerance = 4.0 * f64::EPSILON * libm::fmax(libm::fabs(z), limit);
+            if deflection.is_nan() || libm::fabs(deflection) > limit + tolerance {
+                return Err(Error::StateOutsideWindow {
+                    index,
+                    deflection,
+                    limit,
+                });
+            }
+        }
+        Ok(())
     }
 }
 

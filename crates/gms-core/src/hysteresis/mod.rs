@@ -7,7 +7,7 @@ mod linear;
 mod maxwell;
 
 pub use linear::Linear;
-pub use maxwell::MaxwellSlip;
+pub use maxwell::{MaxwellSlip, MIN_DELTA_RATIO};
 
 /// Fh at a candidate deflection and the linear pieces of Fh on either side of it, evaluated
 /// without committing (the memory stays as it was at step start).
@@ -51,4 +51,16 @@ pub trait Hysteresis {
 
     /// sup |Fh| over all z (infinite for a linear spring).
     fn max_force(&self) -> f64;
+
+    /// Checks a memory written from outside (not produced by stepping) against deflection `z`:
+    /// every element within its window, to a rounding tolerance. The default accepts any
+    /// memory, which suits a hysteresis without one.
+    ///
+    /// # Errors
+    /// [`Error::StateOutsideWindow`](crate::Error::StateOutsideWindow) naming the first
+    /// element out of its window.
+    fn check_memory(&self, memory: &Self::Memory, z: f64) -> Result<(), crate::Error> {
+        let _ = (memory, z);
+        Ok(())
+    }
 }
