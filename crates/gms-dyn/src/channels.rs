@@ -90,7 +90,15 @@ pub(crate) fn all_or_nothing<S: Clone>(
             .unwrap_or(Ok(()))
             .map_err(Error::Core);
     }
-    let before = states.clone();
+    // The copy is fallible like the states themselves: a bank that fits once may not fit twice.
+    let mut before = Vec::new();
+    before
+        .try_reserve_exact(states.len())
+        .map_err(|_| Error::OutOfMemory {
+            channels: states.len(),
+            bytes_each: core::mem::size_of::<S>(),
+        })?;
+    before.extend_from_slice(states);
     let outcome = run(states)
         .into_iter()
         .enumerate()

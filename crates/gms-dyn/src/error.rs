@@ -40,7 +40,8 @@ pub enum Error {
         /// The new parameters' hysteresis.
         got: HysteresisKind,
     },
-    /// The states of `channels` channels do not fit in memory.
+    /// The states of `channels` channels (or the copy an all-or-nothing run keeps) do not fit
+    /// in memory.
     OutOfMemory {
         /// The number of channels asked for.
         channels: usize,
@@ -72,6 +73,14 @@ pub enum Error {
         elements: usize,
         /// The number of values that came.
         got: usize,
+    },
+    /// A state written into channel `channel` breaks a rule of gms-core (an element outside its
+    /// window, a non-finite value).
+    State {
+        /// Index of the channel.
+        channel: usize,
+        /// The rule broken.
+        error: gms_core::Error,
     },
     /// A break deflection of [`slip_responses`](crate::slip_responses) is not finite and > 0,
     /// or so small that 1/Delta overflows.
@@ -110,14 +119,17 @@ impl Error {
             Error::OutOfMemory { .. }
             | Error::ChannelIndex { .. }
             | Error::SignalShape { .. }
-            | Error::BreakDeflection { .. } => ErrorKind::Input,
+            | Error::BreakDeflection { .. }
+            | Error::State { .. } => ErrorKind::Input,
         }
     }
 
     /// The gms-core error inside, if there is one.
     pub fn core(&self) -> Option<gms_core::Error> {
         match self {
-            Error::Core(error) | Error::Channel(InChannel { error, .. }) => Some(*error),
+            Error::Core(error)
+            | Error::Channel(InChannel { error, .. })
+            | Error::State { error, .. } => Some(*error),
             _ => None,
         }
     }
@@ -127,7 +139,14 @@ impl Error {
 fn is_input(field: Field) -> bool {
     matches!(
         field,
-        Field::dt | Field::v | Field::x | Field::u | Field::f | Field::regressor
+        Field::dt
+            | Field::v
+            | Field::x
+            | Field::u
+            | Field::f
+            | Field::regressor
+            | Field::z
+            | Field::zeta
     )
 }
 
@@ -150,11 +169,16 @@ fn core_kind(error: &gms_core::Error) -> ErrorKind {
         | Core::Element { .. }
         | Core::NoElements
         | Core::ElementsTooWeak { .. }
+        | Core::ForceSumOverflow { .. }
+        | Core::StiffnessOverflow { .. }
+        | Core::StiffnessSumOverflow
+        | Core::DeltaTooNarrow { .. }
         | Core::TraceBelowInitial { .. } => ErrorKind::Parameter,
         Core::VelocityNotFinite { .. }
         | Core::Overflow { .. }
         | Core::InputsOverflow { .. }
         | Core::InputLengthMismatch { .. }
+        | Core::StateOutsideWindow { .. }
         | Core::LengthMismatch { .. } => ErrorKind::Input,
     }
 }
@@ -217,6 +241,7 @@ impl fmt::Display for Error {
                  sigma2, offset), got {got}",
                 elements + gms_core::identification::EXTRA_TERMS
             ),
+            Error::State { channel, error } => write!(f, "state of channel {channel}: {error}"),
             Error::BreakDeflection { index, value } => write!(
                 f,
                 "`Delta[{index}]` must be finite and > 0 (and 1/Delta finite), got {}",

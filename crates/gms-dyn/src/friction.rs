@@ -47,7 +47,13 @@ trait FrictionChannels: Send + Sync {
         last: &mut [f64],
         has_last: &mut [bool],
     );
-    fn write_state(&mut self, z: &[f64], memory: &[f64], last: &[f64], has_last: &[bool]);
+    fn write_state(
+        &mut self,
+        z: &[f64],
+        memory: &[f64],
+        last: &[f64],
+        has_last: &[bool],
+    ) -> Result<(), Error>;
 }
 
 struct Channels<H: Hysteresis> {
@@ -86,14 +92,18 @@ where
         let samples = samples_per_channel(input.len(), self.states.len())?;
         check_output(input.len(), out.len())?;
         let (params, scheme) = (&self.params, self.scheme);
+        if samples == 0 {
+            // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
+            return Ok(params.simulate(&mut params.relaxed_state(), &[], dt, scheme, &mut [])?);
+        }
         // gms-core checks dt and scans each row for finiteness before it steps: the one check.
         let run_one = |state: &mut State<H::Memory>, input: &[f64], out: &mut [f64]| match kind {
             Input::Velocity => params.simulate(state, input, dt, scheme, out),
             Input::Position => params.simulate_position(state, input, dt, scheme, out),
         };
         all_or_nothing(&mut self.states, |states| {
-            if states.len() == 1 || samples == 0 {
-                // One channel needs no thread pool; empty rows still have their dt checked.
+            if states.len() == 1 {
+                // One channel needs no thread pool.
                 let (mut input, mut out) = (input, out);
                 return states
                     .iter_mut()
@@ -153,13 +163,31 @@ where
         }
     }
 
-    fn write_state(&mut self, z: &[f64], memory: &[f64], last: &[f64], has_last: &[bool]) {
+    fn write_state(
+        &mut self,
+        z: &[f64],
+        memory: &[f64],
+        last: &[f64],
+        has_last: &[bool],
+    ) -> Result<(), Error> {
         let n = <H::Memory as Memory>::LEN;
-        for (channel, state) in self.states.iter_mut().enumerate() {
+        let state_of = |channel: usize| {
+            let mut state = self.params.relaxed_state();
             state.z = z[channel];
             state.memory.write(&memory[channel * n..(channel + 1) * n]);
             state.last_position = has_last[channel].then_some(last[channel]);
+            state
+        };
+        // Every channel is checked before any is written: all or nothing.
+        for channel in 0..self.states.len() {
+            self.params
+                .check_state(&state_of(channel))
+                .map_err(|error| Error::State { channel, error })?;
         }
+        for channel in 0..self.states.len() {
+            self.states[channel] = state_of(channel);
+        }
+        Ok(())
     }
 }
 
@@ -274,6 +302,11 @@ impl FrictionBank {
 
     /// Copies states in; the slices are shaped as for [`FrictionBank::read_state`].
     ///
+    /// # Errors
+    /// [`Error::State`] naming the first channel whose state breaks a rule
+    /// ([`Params::check_state`]: z and the previous position finite, every element within its
+    /// window); then no channel is written.
+    ///
     /// # Panics
     /// If a slice has another length.
     pub fn write_state(
@@ -282,7 +315,7 @@ impl FrictionBank {
         memory: &[f64],
         last_position: &[f64],
         has_last_position: &[bool],
-    ) {
+    ) -> Result<(), Error> {
         self.assert_state_lengths(
             z.len(),
             memory.len(),
@@ -290,7 +323,7 @@ impl FrictionBank {
             has_last_position.len(),
         );
         self.channels
-            .write_state(z, memory, last_position, has_last_position);
+            .write_state(z, memory, last_position, has_last_position)
     }
 
     fn assert_state_lengths(&self, z: usize, memory: usize, last: usize, has_last: usize) {

@@ -52,7 +52,14 @@ trait MassChannels: Send + Sync {
     fn run(&mut self, u: &[f64], dt: f64, out: Trajectory<'_>) -> Result<(), Error>;
     fn place(&mut self, x: &[f64], v: &[f64]);
     fn read_state(&self, out: MassStates<'_>);
-    fn write_state(&mut self, x: &[f64], v: &[f64], anchor: &[f64], z: &[f64], zeta: &[f64]);
+    fn write_state(
+        &mut self,
+        x: &[f64],
+        v: &[f64],
+        anchor: &[f64],
+        z: &[f64],
+        zeta: &[f64],
+    ) -> Result<(), Error>;
 }
 
 struct Channels<H: Hysteresis> {
@@ -91,6 +98,15 @@ where
             check_output(u.len(), got)?;
         }
         let (system, scheme) = (&self.system, self.scheme);
+        if samples == 0 {
+            // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
+            let empty = Trajectory {
+                friction: &mut [],
+                x: &mut [],
+                v: &mut [],
+            };
+            return Ok(system.simulate(&mut system.state_at(0.0, 0.0), &[], dt, scheme, empty)?);
+        }
         let run_one = |state: &mut MassState<H::Memory>,
                        u: &[f64],
                        friction: &mut [f64],
@@ -99,8 +115,8 @@ where
             system.simulate(state, u, dt, scheme, Trajectory { friction, x, v })
         };
         all_or_nothing(&mut self.states, |states| {
-            if states.len() == 1 || samples == 0 {
-                // One channel needs no thread pool; empty rows still have their dt checked.
+            if states.len() == 1 {
+                // One channel needs no thread pool.
                 return states
                     .iter_mut()
                     .map(|state| {
@@ -142,15 +158,33 @@ where
         }
     }
 
-    fn write_state(&mut self, x: &[f64], v: &[f64], anchor: &[f64], z: &[f64], zeta: &[f64]) {
+    fn write_state(
+        &mut self,
+        x: &[f64],
+        v: &[f64],
+        anchor: &[f64],
+        z: &[f64],
+        zeta: &[f64],
+    ) -> Result<(), Error> {
         let n = <H::Memory as Memory>::LEN;
-        for (b, state) in self.states.iter_mut().enumerate() {
-            state.x = x[b];
-            state.v = v[b];
+        let state_of = |b: usize| {
+            let mut state = self.system.state_at(x[b], v[b]);
             state.anchor = anchor[b];
             state.friction.z = z[b];
             state.friction.memory.write(&zeta[b * n..(b + 1) * n]);
+            state
+        };
+        // Every channel's friction state is checked before any is written: all or nothing.
+        for channel in 0..self.states.len() {
+            self.system
+                .friction()
+                .check_state(&state_of(channel).friction)
+                .map_err(|error| Error::State { channel, error })?;
         }
+        for channel in 0..self.states.len() {
+            self.states[channel] = state_of(channel);
+        }
+        Ok(())
     }
 }
 
@@ -254,11 +288,22 @@ impl MassBank {
 
     /// Copies states in, shaped as [`MassStates`] describes.
     ///
+    /// # Errors
+    /// [`Error::State`] naming the first channel whose friction state breaks a rule
+    /// ([`Params::check_state`]); then no channel is written.
+    ///
     /// # Panics
     /// If a slice has another length.
-    pub fn write_state(&mut self, x: &[f64], v: &[f64], anchor: &[f64], z: &[f64], zeta: &[f64]) {
+    pub fn write_state(
+        &mut self,
+        x: &[f64],
+        v: &[f64],
+        anchor: &[f64],
+        z: &[f64],
+        zeta: &[f64],
+    ) -> Result<(), Error> {
         self.assert_state_lengths([x.len(), v.len(), anchor.len(), z.len()], zeta.len());
-        self.channels.write_state(x, v, anchor, z, zeta);
+        self.channels.write_state(x, v, anchor, z, zeta)
     }
 
     fn assert_state_lengths(&self, per_channel: [usize; 4], zeta: usize) {

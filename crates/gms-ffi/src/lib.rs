@@ -413,6 +413,13 @@ fn report(reason: gms_dyn::Error, detail: Option<&mut leuven_rt_error>) -> leuve
             | Error::Negative { field, .. }
             | Error::StaticBelowCoulomb { field, .. },
         ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0),
+        Refused::Core(Error::ForceSumOverflow { index, .. }) => {
+            (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
+        }
+        Refused::Core(
+            Error::StiffnessOverflow { index, .. } | Error::DeltaTooNarrow { index, .. },
+        ) => (LEUVEN_RT_INVALID_PARAMETER, c"Delta", index),
+        Refused::Core(Error::StiffnessSumOverflow) => (LEUVEN_RT_INVALID_PARAMETER, c"Delta", 0),
         // sum(W) <= max(Fs, Fs_neg): the elements are too weak.
         Refused::Core(Error::ElementsTooWeak { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
         Refused::BothHysteresis | Refused::NeitherHysteresis => {

@@ -195,7 +195,6 @@ impl MassEngine {
                 "state must have shapes x, v, anchor, z ({b},) and zeta ({b}, {n})"
             )));
         }
-        self.bank.write_state(x, v, anchor, z, zeta);
-        Ok(())
+        self.bank.write_state(x, v, anchor, z, zeta).map_err(raise)
     }
 }

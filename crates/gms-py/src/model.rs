@@ -190,7 +190,8 @@ impl Engine {
                  has_last_position ({b},)"
             )));
         }
-        self.bank.write_state(z, zeta, last, has_last);
-        Ok(())
+        self.bank
+            .write_state(z, zeta, last, has_last)
+            .map_err(raise)
     }
 }
