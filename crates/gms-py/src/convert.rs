@@ -81,3 +81,17 @@ pub fn scheme_name(scheme: Scheme) -> &'static str {
         Scheme::Explicit => "explicit",
     }
 }
+
+/// `len` zeros for an output array, or an `InputError` if they do not fit in memory (an
+/// infallible allocation would abort the interpreter).
+pub fn zeros(len: usize, name: &str) -> PyResult<Vec<f64>> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(len).map_err(|_| {
+        InputError::new_err(format!(
+            "`{name}` of {len} samples does not fit in memory ({} bytes of output)",
+            len.saturating_mul(8)
+        ))
+    })?;
+    out.resize(len, 0.0);
+    Ok(out)
+}

@@ -10,7 +10,7 @@ use numpy::{
 use pyo3::prelude::*;
 
 use crate::convert::{
-    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel,
+    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
 };
 use crate::errors::{raise, InputError, ParameterError};
 use crate::params::parameter_set;
@@ -122,7 +122,7 @@ impl MassEngine {
         same_channels(shape[0], self.bank.channels(), "`u`", "system")?;
         let u = u.as_slice()?;
         let size = u.len();
-        let mut out = vec![0.0; 3 * size];
+        let mut out = zeros(3 * size, "u")?;
         let bank = &mut self.bank;
         py.detach(|| {
             let (friction, rest) = out.split_at_mut(size);

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use gms_dyn::{FrictionBank, Input};
 
 use crate::convert::{
-    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel,
+    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
 };
 use crate::errors::{raise, InputError};
 use crate::params::parameter_set;
@@ -124,7 +124,7 @@ impl Engine {
         let shape = [input.shape()[0], input.shape()[1]];
         same_channels(shape[0], self.bank.channels(), "input", "model")?;
         let input = input.as_slice()?;
-        let mut out = vec![0.0; input.len()];
+        let mut out = zeros(input.len(), "input")?;
         let bank = &mut self.bank;
         py.detach(|| bank.run(input, dt, kind(position), &mut out))
             .map_err(raise)?;
@@ -146,7 +146,7 @@ impl Engine {
             )));
         }
         let x = x.as_slice()?;
-        let (mut out, mut z) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+        let (mut out, mut z) = (zeros(x.len(), "x")?, zeros(x.len(), "x")?);
         let bank = &mut self.bank;
         py.detach(|| bank.trace_position(0, x, dt, &mut out, &mut z))
             .map_err(raise)?;
