@@ -228,8 +228,8 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
     }
 
     fn check_memory(&self, zeta: &[f64; N], z: f64) -> Result<(), Error> {
-        for index in 0..N {
-            let (deflection, limit) = (z - zeta[index], self.delta[index]);
+        for (index, (&position, &limit)) in zeta.iter().zip(&self.delta).enumerate() {
+            let deflection = z - position;
             // What the getter reads back after a slip is z − (z − Δ), a few ulps off Δ.
             let tolerance = 4.0 * f64::EPSILON * libm::fmax(libm::fabs(z), limit);
             if deflection.is_nan() || libm::fabs(deflection) > limit + tolerance {
