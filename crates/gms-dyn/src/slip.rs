@@ -39,6 +39,20 @@ pub fn slip_responses(x: &[f64], delta: &[f64], out: &mut [f64]) -> Result<(), E
                 index: first + index,
                 value,
             },
+            // With unit weights, an overflowing stiffness is an overflowing 1/Delta.
+            gms_core::Error::StiffnessOverflow { index, delta, .. } => Error::BreakDeflection {
+                index: first + index,
+                value: delta,
+            },
+            gms_core::Error::DeltaTooNarrow {
+                index,
+                value,
+                widest,
+            } => Error::Core(gms_core::Error::DeltaTooNarrow {
+                index: first + index,
+                value,
+                widest,
+            }),
             other => Error::Core(other),
         })?;
         for (row, values) in out
