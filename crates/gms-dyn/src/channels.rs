@@ -79,16 +79,12 @@ pub(crate) fn check_output(expected: usize, got: usize) -> Result<(), Error> {
 /// error names the first failing channel when there are several.
 pub(crate) fn all_or_nothing<S: Clone>(
     states: &mut Vec<S>,
-    run: impl FnOnce(&mut [S]) -> Vec<Result<(), gms_core::Error>>,
+    run: impl FnOnce(&mut [S]) -> Option<(usize, gms_core::Error)>,
 ) -> Result<(), Error> {
     let several = states.len() > 1;
     if !several {
         // One channel: gms-core's own all-or-nothing is enough, no copy needed.
-        return run(states)
-            .into_iter()
-            .next()
-            .unwrap_or(Ok(()))
-            .map_err(Error::Core);
+        return run(states).map_or(Ok(()), |(_, error)| Err(Error::Core(error)));
     }
     // The copy is fallible like the states themselves: a bank that fits once may not fit twice.
     let mut before = Vec::new();
@@ -99,14 +95,11 @@ pub(crate) fn all_or_nothing<S: Clone>(
             bytes_each: core::mem::size_of::<S>(),
         })?;
     before.extend_from_slice(states);
-    let outcome = run(states)
-        .into_iter()
-        .enumerate()
-        .try_for_each(|(channel, result)| {
-            result.map_err(|error| Error::Channel(InChannel { channel, error }))
-        });
-    if outcome.is_err() {
-        *states = before;
+    match run(states) {
+        None => Ok(()),
+        Some((channel, error)) => {
+            *states = before;
+            Err(Error::Channel(InChannel { channel, error }))
+        }
     }
-    outcome
 }

@@ -105,21 +105,27 @@ where
             if states.len() == 1 {
                 // One channel needs no thread pool.
                 let (mut input, mut out) = (input, out);
-                return states
-                    .iter_mut()
-                    .map(|state| {
-                        let (row, rest) = input.split_at(samples);
-                        let (row_out, rest_out) = core::mem::take(&mut out).split_at_mut(samples);
-                        (input, out) = (rest, rest_out);
-                        run_one(state, row, row_out)
-                    })
-                    .collect();
+                return states.iter_mut().enumerate().find_map(|(channel, state)| {
+                    let (row, rest) = input.split_at(samples);
+                    let (row_out, rest_out) = core::mem::take(&mut out).split_at_mut(samples);
+                    (input, out) = (rest, rest_out);
+                    run_one(state, row, row_out)
+                        .err()
+                        .map(|error| (channel, error))
+                });
             }
+            // Only the first failing channel is kept: a result per channel would be one more
+            // allocation the size of the bank, and an infallible one.
             states
                 .par_iter_mut()
                 .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
-                .map(|(state, (input, out))| run_one(state, input, out))
-                .collect()
+                .enumerate()
+                .filter_map(|(channel, (state, (input, out)))| {
+                    run_one(state, input, out)
+                        .err()
+                        .map(|error| (channel, error))
+                })
+                .min_by_key(|(channel, _)| *channel)
         })
     }
 

@@ -117,27 +117,32 @@ where
         all_or_nothing(&mut self.states, |states| {
             if states.len() == 1 {
                 // One channel needs no thread pool.
-                return states
-                    .iter_mut()
-                    .map(|state| {
-                        let rows = samples.min(u.len());
-                        run_one(
-                            state,
-                            &u[..rows],
-                            &mut friction[..rows],
-                            &mut x[..rows],
-                            &mut v[..rows],
-                        )
-                    })
-                    .collect();
+                return states.iter_mut().enumerate().find_map(|(channel, state)| {
+                    let rows = samples.min(u.len());
+                    run_one(
+                        state,
+                        &u[..rows],
+                        &mut friction[..rows],
+                        &mut x[..rows],
+                        &mut v[..rows],
+                    )
+                    .err()
+                    .map(|error| (channel, error))
+                });
             }
+            // Only the first failing channel is kept (see the friction bank).
             states
                 .par_iter_mut()
                 .zip(u.par_chunks(samples))
                 .zip(friction.par_chunks_mut(samples))
                 .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
-                .map(|(((state, u), friction), (x, v))| run_one(state, u, friction, x, v))
-                .collect()
+                .enumerate()
+                .filter_map(|(channel, (((state, u), friction), (x, v)))| {
+                    run_one(state, u, friction, x, v)
+                        .err()
+                        .map(|error| (channel, error))
+                })
+                .min_by_key(|(channel, _)| *channel)
         })
     }
 
