@@ -207,10 +207,7 @@ class MassSystem(_core.MassEngine):
         arrays = []
         for name in ("position", "velocity", "anchor", "z", "zeta"):
             shape = (b, n) if name == "zeta" else (b,)
-            try:
-                array = np.asarray(getattr(state, name), dtype=np.float64)
-            except (TypeError, ValueError):
-                raise InputError(f"`state.{name}` must hold real numbers") from None
+            array = np.asarray(real_array(getattr(state, name), f"state.{name}"), dtype=np.float64)
             if array.shape != shape:
                 raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
             if not np.isfinite(array).all():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +18,7 @@ from ._checks import (
     check_scheme,
     guarded,
     is_borrow_error,
+    real_array,
 )
 from ._typing import FloatArray, Scheme
 from .errors import InputError
@@ -169,13 +171,19 @@ class LeuvenModel(_core.Engine):
             raise InputError(f"`state` must be a ModelState, got {type(state).__name__}")
         b, n = self.channels, self.elements
         expected = {"z": (b,), "zeta": (b, n), "last_position": (b,), "has_last_position": (b,)}
-        arrays = {}
+        arrays: dict[str, Any] = {}
         for name, shape in expected.items():
             value = getattr(state, name)
             boolean = name == "has_last_position"
+            array: NDArray[Any]
             try:
-                array = np.asarray(value, dtype=np.bool_ if boolean else np.float64)
-            except (TypeError, ValueError):
+                if boolean:
+                    array = np.asarray(value, dtype=np.bool_)
+                else:  # numbers only: text or booleans are not positions
+                    array = np.asarray(real_array(value, f"state.{name}"), dtype=np.float64)
+            except (TypeError, ValueError) as error:
+                if isinstance(error, InputError):
+                    raise
                 raise InputError(
                     f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}"
                 ) from None

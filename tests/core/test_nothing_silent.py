@@ -245,3 +245,18 @@ def test_a_second_thread_gets_concurrent_use_error() -> None:
     assert found == {"ConcurrentUseError"}, found
     system.step(0.0, DT)
     identifier.update(0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("spoil", [lambda a: a.astype(str), lambda a: a > 0], ids=["text", "bool"])
+def test_checkpoints_of_text_or_booleans_are_refused(spoil: Callable[[np.ndarray], Any]) -> None:
+    """A checkpoint whose positions are text or booleans was read as numbers by set_state."""
+    model = lr.LeuvenModel(MAXWELL)
+    model.run(V, DT)
+    state = model.state
+    with pytest.raises(InputError, match=r"`state.z` must hold real numbers"):
+        s = state
+        model.set_state(lr.ModelState(spoil(s.z), s.zeta, s.last_position, s.has_last_position))
+    system = lr.MassSystem(MAXWELL, mass=1.0)
+    c = system.state
+    with pytest.raises(InputError, match=r"`state.position` must hold real numbers"):
+        system.set_state(lr.MassState(spoil(c.position + 1.0), c.velocity, c.anchor, c.z, c.zeta))
