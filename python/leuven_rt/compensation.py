@@ -49,7 +49,7 @@ class Compensator(_core.CompensatorEngine):
         """The force for this sample, from the desired velocity (feedforward) or the measured
         position (observer)."""
         try:
-            return super().step(input)
+            return _core.CompensatorEngine.step(self, input)
         except RuntimeError as error:
             if is_borrow_error(error):
                 raise busy(self) from None

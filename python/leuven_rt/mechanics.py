@@ -139,7 +139,7 @@ class MassSystem(_core.MassEngine):
         """One step of a single-channel system with applied force ``u``: returns (friction,
         position, velocity) at its end."""
         try:
-            return super().step(u, dt)
+            return _core.MassEngine.step(self, u, dt)
         except RuntimeError as error:
             if is_borrow_error(error):
                 raise busy(self) from None

@@ -93,7 +93,7 @@ class LeuvenModel(_core.Engine):
     def step(self, v: float, dt: float) -> float:
         """One step of a single-channel model with velocity ``v``; returns the force."""
         try:
-            return super().step(v, dt)
+            return _core.Engine.step(self, v, dt)
         except RuntimeError as error:
             if is_borrow_error(error):
                 raise busy(self) from None
@@ -102,7 +102,7 @@ class LeuvenModel(_core.Engine):
     def step_position(self, x: float, dt: float) -> float:
         """One step of a single-channel model with position ``x``; returns the force."""
         try:
-            return super().step_position(x, dt)
+            return _core.Engine.step_position(self, x, dt)
         except RuntimeError as error:
             if is_borrow_error(error):
                 raise busy(self) from None

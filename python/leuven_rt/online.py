@@ -105,7 +105,7 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         """One sample of position ``x``, velocity ``v`` and force ``f``; returns the a priori
         prediction error f − f̂ (a rejected sample changes nothing)."""
         try:
-            return super().update(x, v, f)
+            return _core.OnlineIdentifier.update(self, x, v, f)
         except RuntimeError as error:
             if is_borrow_error(error):
                 raise busy(self) from None
