@@ -260,3 +260,23 @@ def test_checkpoints_of_text_or_booleans_are_refused(spoil: Callable[[np.ndarray
     c = system.state
     with pytest.raises(InputError, match=r"`state.position` must hold real numbers"):
         system.set_state(lr.MassState(spoil(c.position + 1.0), c.velocity, c.anchor, c.z, c.zeta))
+
+
+@pytest.mark.parametrize(
+    ("ending", "mark"),
+    [("\n", ""), ("\r\n", ""), ("\r", ""), ("\n", "\ufeff")],
+    ids=["lf", "crlf", "cr", "bom"],
+)
+def test_csv_line_endings_and_a_byte_order_mark_load_the_same(tmp_path: Path, ending: str, mark: str) -> None:
+    """The loader reads the file's bytes itself (to name the file when they are not UTF-8): every
+    line ending, and a UTF-8 byte-order mark, give the same columns, bit for bit."""
+    from leuven_rt.data.records import load_csv
+
+    log = small_log()
+    rows = ["t,x,f"] + [",".join(repr(float(log[k][i])) for k in "txf") for i in range(len(log["t"]))]
+    path = tmp_path / "log.csv"
+    path.write_bytes((mark + ending.join(rows) + ending).encode("utf-8"))
+    columns = load_csv(path)
+    assert sorted(columns) == ["f", "t", "x"]
+    for key in "txf":
+        np.testing.assert_array_equal(columns[key], log[key])

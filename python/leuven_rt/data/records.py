@@ -226,7 +226,7 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # numpy warns of odd files: refuse them instead
             table = np.genfromtxt(
-                io.StringIO(text), delimiter=",", names=True, dtype=np.float64, encoding=None
+                io.StringIO(text, newline=None), delimiter=",", names=True, dtype=np.float64, encoding=None
             )
     except (ValueError, IndexError, TypeError, Warning) as error:
         message = " ".join(str(error).split())[:300]
