@@ -10,7 +10,24 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
+
+#: The fuzzing suite's budget (tests/fuzz): a fixed number of inputs per test, drawn from a fixed
+#: seed (derandomize), so that every run tries the same inputs and the suite stays within about a
+#: minute. No deadline: the machines are shared and slow. Nothing is written to a database.
+settings.register_profile(
+    "fuzz",
+    max_examples=150,
+    stateful_step_count=30,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much],
+)
+#: Use in the fuzz tests as ``@FUZZ`` (or ``FUZZ`` as a state machine's ``TestCase.settings``).
+FUZZ = settings.get_profile("fuzz")
 
 #: A fixed Maxwell-slip model (asymmetric, N = 4) for the example-based tests.
 MAXWELL: dict[str, Any] = dict(

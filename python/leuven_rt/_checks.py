@@ -9,38 +9,117 @@ the same error from either.
 
 from __future__ import annotations
 
+import functools
 import numbers
 import sys
-from collections.abc import Sequence
-from typing import Any, cast
+from collections.abc import Callable, Sequence
+from typing import Any, Concatenate, ParamSpec, TypeVar, cast
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from ._typing import FloatArray, Scheme
-from .errors import InputError, ParameterError
+from .errors import ConcurrentUseError, InputError, ParameterError
 
 SCHEMES = ("implicit", "explicit")
 
 
-def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:
-    """A (B, T) C-contiguous float64 copy-free view where possible, and whether it was (T,).
+#: PyO3's messages when an object is called while another thread holds it (inside ``run``).
+_BORROW_MESSAGES = ("Already borrowed", "Already mutably borrowed")
 
-    Raises :class:`InputError` for values that are not real numbers and for shapes other than
-    (T,) or (B, T) with B ≥ 1. The samples are not scanned: gms-core refuses non-finite ones
-    (naming channel and sample) on the Rust paths, :func:`require_finite` on the others.
-    """
-    try:
-        if np.iscomplexobj(values):
-            raise InputError(f"`{name}` must be real, got a complex array")
-        array = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        if isinstance(error, InputError):
+_Self = TypeVar("_Self")
+_Arguments = ParamSpec("_Arguments")
+_Result = TypeVar("_Result")
+
+
+def is_borrow_error(error: RuntimeError) -> bool:
+    """Whether ``error`` is PyO3's refusal to lend an object that another thread holds."""
+    return str(error) in _BORROW_MESSAGES
+
+
+def busy(owner: object) -> ConcurrentUseError:
+    """The :class:`ConcurrentUseError` for ``owner``, called while another thread is inside it."""
+    return ConcurrentUseError(
+        f"this {type(owner).__name__} is in use by another thread (inside a call that releases the "
+        "GIL, such as `run`): nothing was changed; give each thread its own object or serialise "
+        "the calls"
+    )
+
+
+def guarded(
+    method: Callable[Concatenate[_Self, _Arguments], _Result],
+) -> Callable[Concatenate[_Self, _Arguments], _Result]:
+    """``method`` with PyO3's borrow error (another thread is inside the object) raised as
+    :class:`ConcurrentUseError`; every other error passes unchanged."""
+
+    @functools.wraps(method)
+    def call(self: _Self, /, *args: _Arguments.args, **kwargs: _Arguments.kwargs) -> _Result:
+        try:
+            return method(self, *args, **kwargs)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
             raise
-        raise InputError(f"`{name}` must be castable to float64: {error}") from None
-    if array.ndim not in (1, 2):
-        raise InputError(f"`{name}` must have shape (T,) or (B, T), got shape {array.shape}")
-    array = np.ascontiguousarray(array)
+
+    return call
+
+
+def real_number(value: Any, name: str, error: type[ValueError] = InputError) -> float:
+    """A real number (not a bool, not text) as a float, refused with ``error`` naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise error(f"`{name}` must be a real number, got {value!r:.80}")
+    try:
+        return float(value)
+    except OverflowError:  # an int beyond the float range
+        raise error(f"`{name}` must be finite, got an integer of {len(str(value))} digits") from None
+
+
+def real_array(
+    values: Any, name: str, error: type[ValueError] = InputError, *, label: str | None = None
+) -> NDArray[Any]:
+    """``values`` as a numpy array of an integer or float dtype (any shape), without copying when
+    it already is one: text, bytes, booleans, dates, objects, structured records, complex numbers
+    and masked arrays are refused with ``error`` naming ``name`` (or saying ``label``, e.g.
+    "column `t`"), never read as numbers."""
+    label = f"`{name}`" if label is None else label
+    if isinstance(values, (str, bytes, bytearray)):
+        raise error(f"{label} must be real numbers, got {type(values).__name__} {values!r:.60}")
+    if np.ma.isMaskedArray(values):
+        raise error(
+            f"{label} must be a plain array of real numbers, got a masked array: fill it "
+            "(`.filled(value)`) or compress it (`.compressed()`) first, so that no mask is lost"
+        )
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError, OverflowError) as failure:
+        raise error(f"{label} must be an array of real numbers: {failure}") from None
+    kind = array.dtype.kind
+    if kind == "c":
+        raise error(f"{label} must be real, got a complex array")
+    if kind not in "iuf":
+        what = "structured records" if array.dtype.names else f"dtype {array.dtype}"
+        raise error(f"{label} must hold real numbers (an integer or float dtype), got {what}")
+    return array
+
+
+def as_signal(values: ArrayLike, name: str) -> tuple[FloatArray, bool]:
+    """A (B, T) C-contiguous float64 array of its own, and whether ``values`` was (T,).
+
+    The array never shares memory with ``values``: the Rust paths read it with the GIL released,
+    and another thread writing the caller's array meanwhile must not change the result.
+
+    Raises :class:`InputError` for values that are not real numbers (see :func:`real_array`) and
+    for shapes other than (T,) or (B, T) with B ≥ 1. The samples are not scanned: gms-core refuses
+    non-finite ones (naming channel and sample) on the Rust paths, :func:`require_finite` on the
+    others.
+    """
+    raw = real_array(values, name)
+    if raw.ndim not in (1, 2):
+        raise InputError(f"`{name}` must have shape (T,) or (B, T), got shape {raw.shape}")
+    shared = raw is values or raw.base is not None  # the caller's memory, or a view of it
+    array: FloatArray = np.asarray(raw, dtype=np.float64, order="C")
+    if shared and np.may_share_memory(array, raw):
+        array = array.copy()
     one_dimensional = array.ndim == 1
     if one_dimensional:
         array = array.reshape(1, -1)
@@ -88,7 +167,10 @@ def as_step(dt: Any) -> float:
     subnormal) is gms-core's to check on the Rust paths; :func:`check_dt` checks it elsewhere."""
     if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
         raise InputError(f"`dt` must be a real number, got {dt!r}")
-    return float(dt)
+    try:
+        return float(dt)
+    except OverflowError:  # an int beyond the float range: as infinite as it gets
+        raise InputError(f"`dt` must be finite and > 0, got an integer of {len(str(dt))} digits") from None
 
 
 def check_dt(dt: Any) -> float:
@@ -123,14 +205,16 @@ def check_scheme(scheme: Any) -> Scheme:
 
 def as_real_list(name: str, values: Any, length: int | None = None) -> list[float]:
     """A flat sequence of real numbers (of ``length`` values, when given) as floats."""
-    if isinstance(values, (str, bytes)) or not (isinstance(values, Sequence) or hasattr(values, "__array__")):
-        raise ParameterError(f"`{name}` must be a sequence of real numbers, got {values!r}")
-    array = np.asarray(values)
-    if array.ndim != 1 or array.dtype.kind not in "iuf":
+    if isinstance(values, (str, bytes, bytearray)) or not (
+        isinstance(values, Sequence) or hasattr(values, "__array__")
+    ):
+        raise ParameterError(f"`{name}` must be a sequence of real numbers, got {values!r:.80}")
+    array = real_array(values, name, ParameterError)
+    if array.ndim != 1:
         raise ParameterError(f"`{name}` must be a flat sequence of real numbers, got {values!r}")
     if length is not None and array.shape[0] != length:
         raise ParameterError(f"`{name}` must have {length} values, got {array.shape[0]}")
-    return [float(value) for value in array]
+    return [float(value) for value in array.tolist()]
 
 
 def as_log(x: ArrayLike, v: ArrayLike, f: ArrayLike | None) -> list[FloatArray]:

@@ -13,6 +13,8 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
+from ._output import image_format, write_files
+
 
 def figure(
     rows: int = 1, columns: int = 1, *, size: tuple[float, float], **options: Any
@@ -25,8 +27,16 @@ def figure(
 
 
 def save(drawing: Figure, path: str | Path, dpi: int) -> Path:
-    """Writes ``drawing`` to ``path`` (its folder is created if needed) and returns the path."""
+    """Writes ``drawing`` to ``path`` (its folder is created if needed) and returns the path.
+
+    The format is the extension's, which must be one matplotlib writes (:class:`OutputError`
+    otherwise); the file is written atomically (:mod:`leuven_rt._output`), so a failure leaves
+    no partial figure."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    drawing.savefig(path, dpi=dpi)
+    kind = image_format(path)
+
+    def write(temporary: Path) -> None:
+        drawing.savefig(temporary, dpi=dpi, format=kind)
+
+    write_files([(path, write)])
     return path

@@ -1,4 +1,10 @@
-"""The ``leuven-rt`` command line."""
+"""The ``leuven-rt`` command line.
+
+Every command that writes files checks all of its output paths before it starts (never an input
+file, no existing file unless ``--force``, a folder that exists or can be made, a figure format
+matplotlib writes) and writes them atomically: see :mod:`leuven_rt._output`. A refusal prints
+``leuven-rt <command>: error: <message>`` on one line and exits with status 2.
+"""
 
 from __future__ import annotations
 
@@ -7,26 +13,42 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from .errors import ConcurrentUseError, DivergenceError, InputError, ParameterError, StackOverflowError
+
+#: The documented errors (docs/errors.md): each ends a command with its one-line message and
+#: status 2. Anything else is a bug, and keeps its traceback.
+DOCUMENTED = (ParameterError, InputError, DivergenceError, StackOverflowError, ConcurrentUseError)
+
+FORCE_HELP = "replace output files that exist (an input file is never overwritten)"
+
+
+def _folder_outputs(out: str, names: Sequence[str], force: bool) -> Path:
+    """Checks the folder ``--out`` and the files a command will write into it, before the work."""
+    from ._output import check_folder, check_outputs
+
+    folder = check_folder(out, "--out")
+    check_outputs([("--out file", folder / name, True) for name in names], force=force)
+    return folder
+
 
 def _demo(arguments: argparse.Namespace) -> int:
-    from .studies.demo import run_demo, run_story
+    from .studies.demo import FILES, run_demo, run_story
 
-    print(run_demo(Path(arguments.out)).text())
+    out = _folder_outputs(arguments.out, FILES, arguments.force)
+    print(run_demo(out).text())
     print()
-    print(run_story(Path(arguments.out), progress=True).text())
+    print(run_story(out, progress=True).text())
     return 0
 
 
 def _diagnose(arguments: argparse.Namespace) -> int:
+    from ._output import check_outputs
     from .discrepancy import diagnose
-    from .errors import InputError
 
-    try:
-        diagnosis = diagnose(arguments.data, arguments.baseline, progress=not arguments.json)
-    except InputError as error:  # bad data or effect names: the message says what and where
-        print(f"leuven-rt diagnose: error: {error}", file=sys.stderr)
-        return 2
-    if arguments.plot:
+    if arguments.plot is not None:
+        check_outputs([("--plot", arguments.plot, True)], inputs=[arguments.data], force=arguments.force)
+    diagnosis = diagnose(arguments.data, arguments.baseline, progress=not arguments.json)
+    if arguments.plot is not None:
         from .discrepancy.plot import plot_diagnosis
 
         plot_diagnosis(diagnosis, arguments.plot)
@@ -42,33 +64,34 @@ def _accuracy(arguments: argparse.Namespace) -> int:
 
 
 def _figures(arguments: argparse.Namespace) -> int:
-    from .studies.figures import write_figures
+    from .studies.figures import FILES, write_figures
 
-    for report in write_figures(Path(arguments.out), quick=arguments.quick):
+    out = _folder_outputs(arguments.out, FILES, arguments.force)
+    for report in write_figures(out, quick=arguments.quick):
         print("\n".join(report.lines))
         print(f"  figure: {report.path}\n")
     return 0
 
 
 def _identify(arguments: argparse.Namespace) -> int:
-    from .errors import InputError
+    from ._output import check_outputs, text_writer, write_files
     from .identification import identify
 
-    try:
-        result = identify(
-            arguments.data,
-            elements=arguments.elements,
-            asymmetric=arguments.asymmetric,
-            cutoff=arguments.cutoff,
-            held_out=arguments.held_out,
-            progress=not arguments.quiet,
-        )
-    except InputError as error:  # bad data or options: the message says what and where
-        print(f"leuven-rt identify: error: {error}", file=sys.stderr)
-        return 2
-    result.params.save(arguments.output)
-    if arguments.report:
-        Path(arguments.report).write_text(result.report.to_json() + "\n", encoding="utf-8")
+    outputs: list[tuple[str, str, bool]] = [("-o/--output", arguments.output, False)]
+    if arguments.report is not None:
+        outputs.append(("--report", arguments.report, False))
+    targets = check_outputs(outputs, inputs=[arguments.data], force=arguments.force)
+    result = identify(
+        arguments.data,
+        elements=arguments.elements,
+        asymmetric=arguments.asymmetric,
+        cutoff=arguments.cutoff,
+        held_out=arguments.held_out,
+        progress=not arguments.quiet,
+    )
+    texts = [result.params.to_json() + "\n", result.report.to_json() + "\n"]
+    # Both files or neither: each is written beside its target and renamed once both are complete.
+    write_files([(target, text_writer(text)) for target, text in zip(targets, texts, strict=False)])
     if not arguments.quiet:
         print(result.report.summary())
         print(f"parameters: {arguments.output}")
@@ -78,9 +101,9 @@ def _identify(arguments: argparse.Namespace) -> int:
 
 
 def _control(arguments: argparse.Namespace) -> int:
-    from .studies.closed_loop import run
+    from .studies.closed_loop import FILE, run
 
-    print(run(Path(arguments.out)))
+    print(run(_folder_outputs(arguments.out, [FILE], arguments.force)))
     return 0
 
 
@@ -94,6 +117,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         "write figures",
     )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
+    demo.add_argument("--force", action="store_true", help=FORCE_HELP)
     demo.set_defaults(run=_demo)
     accuracy = commands.add_parser(
         "accuracy",
@@ -105,6 +129,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         "figures", help="reproduce the paper's Figs. 1, 4/5 and the free response, print their numbers"
     )
     figures.add_argument("--out", default="out", help="folder for the PNGs (default: out)")
+    figures.add_argument("--force", action="store_true", help=FORCE_HELP)
     figures.add_argument("--quick", action="store_true", help="two coarser step sizes for Fig. 1 (for tests)")
     figures.set_defaults(run=_figures)
     identify = commands.add_parser(
@@ -123,6 +148,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
     )
     identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
+    identify.add_argument("--force", action="store_true", help=FORCE_HELP)
     identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
     identify.set_defaults(run=_identify)
     diagnose = commands.add_parser(
@@ -140,15 +166,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         action="store_true",
         help="print the JSON report of docs/data-and-reports.md#diagnosis-report (no progress bar)",
     )
-    diagnose.add_argument("--plot", help="write the residual figure to this PNG")
+    diagnose.add_argument(
+        "--plot", help="write the residual figure here (.png, .pdf, .svg, … : any format matplotlib writes)"
+    )
+    diagnose.add_argument("--force", action="store_true", help=FORCE_HELP)
     diagnose.set_defaults(run=_diagnose)
     control = commands.add_parser(
         "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
     )
     control.add_argument("--out", default="out", help="folder for the figure (default: out)")
+    control.add_argument("--force", action="store_true", help=FORCE_HELP)
     control.set_defaults(run=_control)
     arguments = parser.parse_args(argv)
-    return int(arguments.run(arguments))
+    try:
+        return int(arguments.run(arguments))
+    except DOCUMENTED as error:  # a refusal: the message says what and where, no traceback
+        message = " ".join(str(error).split())  # one line
+        print(f"leuven-rt {arguments.command}: error: {message}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

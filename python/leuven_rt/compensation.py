@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import cast
 
 from . import _core
-from ._checks import as_step
+from ._checks import as_step, busy, guarded, is_borrow_error
 from ._typing import Mode
 from .errors import InputError
 from .params import Params, ParamsLike, as_params, core_params
@@ -28,6 +28,9 @@ class Compensator(_core.CompensatorEngine):
     non-finite input raises :class:`InputError` and leaves state and ``output`` unchanged).
     ``set_params(params)``: new parameters of the same kind and number of elements.
     ``reset()``: back to rest. ``output``: the last force returned.
+
+    A compensator's calls hold the GIL, so threads take turns; should two ever overlap (a
+    free-threaded Python), the second raises :class:`~leuven_rt.errors.ConcurrentUseError`.
     """
 
     _params: Params
@@ -42,7 +45,23 @@ class Compensator(_core.CompensatorEngine):
         engine._params = given
         return engine
 
+    def step(self, input: float) -> float:
+        """The force for this sample, from the desired velocity (feedforward) or the measured
+        position (observer)."""
+        try:
+            return _core.CompensatorEngine.step(self, input)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
+            raise
+
+    @guarded
+    def reset(self) -> None:
+        """Back to rest: relaxed hysteresis, output 0."""
+        super().reset()
+
     # Narrower than the engine's on purpose: a Params or a mapping of its keys.
+    @guarded
     def set_params(self, params: ParamsLike) -> None:  # type: ignore[override]
         """Swaps in new parameters between two samples; the hysteresis force carries over."""
         given = as_params(params)

@@ -4,6 +4,10 @@ The three the Rust core raises (:class:`ParameterError`, :class:`InputError`,
 :class:`DivergenceError`) are defined in the extension, so that the core and the Python modules
 raise the same classes; the rest are Python-only and subclass them or ``ValueError``, so that
 ``except ValueError`` (or ``except InputError`` for bad data) catches every refusal.
+
+The one exception outside ``ValueError`` is :class:`ConcurrentUseError` (a ``RuntimeError``): an
+object that is busy in another thread (inside ``run``, which releases the GIL) was called again.
+It says nothing about the arguments, and the same call succeeds once the other one returns.
 """
 
 from __future__ import annotations
@@ -11,9 +15,11 @@ from __future__ import annotations
 from ._core import DivergenceError, InputError, ParameterError
 
 __all__ = [
+    "ConcurrentUseError",
     "DataError",
     "DivergenceError",
     "InputError",
+    "OutputError",
     "ParameterError",
     "ResamplingWarning",
     "StackOverflowError",
@@ -23,6 +29,18 @@ __all__ = [
 class DataError(InputError):
     """Measured data that cannot be identified from: the message names the column and says what
     was expected and what came."""
+
+
+class OutputError(InputError):
+    """An output path that cannot be written: it is one of the inputs, it exists (and overwriting
+    was not asked for), its folder cannot be made, or its extension is not an image format the
+    figure can be saved in. Raised before any work is done."""
+
+
+class ConcurrentUseError(RuntimeError):
+    """A model, mass system, compensator or online identifier was called while another thread
+    was inside one of its calls (``run`` releases the GIL): nothing was changed by this call.
+    Give each thread its own object, or serialise the calls with a lock."""
 
 
 class ResamplingWarning(UserWarning):

@@ -15,6 +15,7 @@ is the same discrete step in numpy.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,8 +26,12 @@ from ._checks import (
     as_channels,
     as_signal,
     as_step,
+    busy,
     check_channels,
     check_scheme,
+    guarded,
+    is_borrow_error,
+    real_array,
     require_finite,
 )
 from ._typing import FloatArray, Scheme
@@ -66,9 +71,12 @@ class MassSystem(_core.MassEngine):
 
     ``mass`` > 0 [kg], ``stiffness`` ≥ 0 [N/m], ``drive_speed`` [m/s] (any sign), all finite:
     otherwise :class:`ParameterError`. Every channel starts at rest at x = 0 (see :meth:`place`).
+    Calling it from a second thread while one is inside ``run`` (which releases the GIL) raises
+    :class:`~leuven_rt.errors.ConcurrentUseError` and changes nothing.
     """
 
     _params: Params
+    _fixed: tuple[float, float, float, int, int, Scheme]
 
     def __new__(
         cls,
@@ -91,7 +99,51 @@ class MassSystem(_core.MassEngine):
             check_scheme(scheme),
         )
         engine._params = given
+        # Fixed for the system's life, and readable while another thread runs it.
+        core: Any = super(MassSystem, engine)
+        engine._fixed = (core.mass, core.stiffness, core.drive_speed, core.channels, core.elements,
+                         core.scheme)  # fmt: skip
         return engine
+
+    @property
+    def mass(self) -> float:
+        """The mass m [kg]."""
+        return self._fixed[0]
+
+    @property
+    def stiffness(self) -> float:
+        """The spring's stiffness k [N/m]."""
+        return self._fixed[1]
+
+    @property
+    def drive_speed(self) -> float:
+        """The speed of the spring's far end [m/s]."""
+        return self._fixed[2]
+
+    @property
+    def channels(self) -> int:
+        """Number of channels B."""
+        return self._fixed[3]
+
+    @property
+    def elements(self) -> int:
+        """Number of Maxwell-slip elements N (0 for linear hysteresis)."""
+        return self._fixed[4]
+
+    @property
+    def scheme(self) -> Scheme:
+        """The integration scheme, 'implicit' or 'explicit'."""
+        return self._fixed[5]
+
+    def step(self, u: float, dt: float) -> tuple[float, float, float]:
+        """One step of a single-channel system with applied force ``u``: returns (friction,
+        position, velocity) at its end."""
+        try:
+            return _core.MassEngine.step(self, u, dt)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
+            raise
 
     @property
     def params(self) -> Params:
@@ -104,6 +156,7 @@ class MassSystem(_core.MassEngine):
             f"channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
         )
 
+    @guarded
     def place(self, position: ArrayLike = 0.0, velocity: ArrayLike = 0.0) -> None:
         """Restarts every channel at ``position``/``velocity`` (scalars or (B,)), with relaxed
         friction and the spring's far end at 0."""
@@ -111,8 +164,10 @@ class MassSystem(_core.MassEngine):
         arrays = []
         for name, value in (("position", position), ("velocity", velocity)):
             try:
-                array = np.broadcast_to(np.asarray(value, dtype=np.float64), (b,))
-            except (TypeError, ValueError):
+                array = np.broadcast_to(real_array(value, name), (b,))
+            except ValueError as error:
+                if isinstance(error, InputError):
+                    raise
                 raise InputError(
                     f"`{name}` must be a real number or have shape ({b},), got {value!r}"
                 ) from None
@@ -121,12 +176,14 @@ class MassSystem(_core.MassEngine):
             arrays.append(np.ascontiguousarray(row))
         self._place(*arrays)
 
+    @guarded
     def step_channels(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """One step of every channel with forces ``u`` of shape (B,); arrays of shape (B,)."""
         array = as_channels(u, "u", self.channels)
         out = self._run(np.ascontiguousarray(array[:, None]), as_step(dt))
         return MassTrajectory(out[0, :, 0], out[1, :, 0], out[2, :, 0])
 
+    @guarded
     def run(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """Continues every channel over forces ``u``: (T,) for one channel or (B, T)."""
         array, one_dimensional = as_channel_signal(u, "u", self.channels)
@@ -136,10 +193,12 @@ class MassSystem(_core.MassEngine):
         return MassTrajectory(out[0], out[1], out[2])
 
     @property
+    @guarded
     def state(self) -> MassState:
         """A checkpoint of every channel."""
         return MassState(*self._get_state())
 
+    @guarded
     def set_state(self, state: MassState) -> None:
         """Restores a checkpoint taken from a system with the same channels and elements."""
         if not isinstance(state, MassState):
@@ -148,10 +207,7 @@ class MassSystem(_core.MassEngine):
         arrays = []
         for name in ("position", "velocity", "anchor", "z", "zeta"):
             shape = (b, n) if name == "zeta" else (b,)
-            try:
-                array = np.asarray(getattr(state, name), dtype=np.float64)
-            except (TypeError, ValueError):
-                raise InputError(f"`state.{name}` must hold real numbers") from None
+            array = np.asarray(real_array(getattr(state, name), f"state.{name}"), dtype=np.float64)
             if array.shape != shape:
                 raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
             if not np.isfinite(array).all():

@@ -3,12 +3,23 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from ._checks import as_channel_signal, as_channels, as_step, check_channels, check_scheme
+from ._checks import (
+    as_channel_signal,
+    as_channels,
+    as_step,
+    busy,
+    check_channels,
+    check_scheme,
+    guarded,
+    is_borrow_error,
+    real_array,
+)
 from ._typing import FloatArray, Scheme
 from .errors import InputError
 from .params import Params, ParamsLike, as_params, core_params
@@ -45,16 +56,62 @@ class LeuvenModel(_core.Engine):
     by one sample (the fast path for control loops); ``step_channels`` advances B channels at
     once; ``run`` continues from the current state over a whole signal. ``state`` and
     ``set_state`` take and restore checkpoints; ``reset`` relaxes every channel.
+
+    A model is one object of state: calling it from a second thread while one is inside ``run``
+    (which releases the GIL) raises :class:`~leuven_rt.errors.ConcurrentUseError` and changes
+    nothing.
     """
 
     _params: Params
+    _shape: tuple[int, int, Scheme]
 
     def __new__(cls, params: ParamsLike, channels: int = 1, scheme: Scheme = "implicit") -> LeuvenModel:
         given = as_params(params)
         # The engine gets the set validated when `given` was built, and does not check it again.
         engine = super().__new__(cls, core_params(given), check_channels(channels), check_scheme(scheme))
         engine._params = given
+        # Fixed for the model's life, and readable while another thread runs it.
+        engine._shape = (super(LeuvenModel, engine).channels, super(LeuvenModel, engine).elements,
+                         super(LeuvenModel, engine).scheme)  # fmt: skip
         return engine
+
+    @property
+    def channels(self) -> int:
+        """Number of channels B."""
+        return self._shape[0]
+
+    @property
+    def elements(self) -> int:
+        """Number of Maxwell-slip elements N (0 for linear hysteresis)."""
+        return self._shape[1]
+
+    @property
+    def scheme(self) -> Scheme:
+        """The integration scheme, 'implicit' or 'explicit'."""
+        return self._shape[2]
+
+    def step(self, v: float, dt: float) -> float:
+        """One step of a single-channel model with velocity ``v``; returns the force."""
+        try:
+            return _core.Engine.step(self, v, dt)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
+            raise
+
+    def step_position(self, x: float, dt: float) -> float:
+        """One step of a single-channel model with position ``x``; returns the force."""
+        try:
+            return _core.Engine.step_position(self, x, dt)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
+            raise
+
+    @guarded
+    def reset(self) -> None:
+        """Relaxes every channel: z = 0, every element at rest, no previous position."""
+        super().reset()
 
     @property
     def params(self) -> Params:
@@ -64,22 +121,27 @@ class LeuvenModel(_core.Engine):
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
 
+    @guarded
     def step_channels(self, v: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with velocities ``v`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(v, "v", self.channels), as_step(dt), False)
 
+    @guarded
     def step_channels_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with positions ``x`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(x, "x", self.channels), as_step(dt), True)
 
+    @guarded
     def run(self, v: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over velocities ``v``: (T,) for one channel or (B, T)."""
         return self._run_signal(v, "v", dt)
 
+    @guarded
     def run_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over positions ``x``: (T,) for one channel or (B, T)."""
         return self._run_signal(x, "x", dt)
 
+    @guarded
     def trace_position(self, x: ArrayLike, dt: float) -> Trace:
         """Continues the single channel over positions ``x`` of shape (T,), recording the
         deflection z after every sample as well as the force."""
@@ -97,23 +159,31 @@ class LeuvenModel(_core.Engine):
         return out[0] if one_dimensional else out
 
     @property
+    @guarded
     def state(self) -> ModelState:
         """A checkpoint of every channel."""
         return ModelState(*self._get_state())
 
+    @guarded
     def set_state(self, state: ModelState) -> None:
         """Restores a checkpoint taken from a model with the same channels and elements."""
         if not isinstance(state, ModelState):
             raise InputError(f"`state` must be a ModelState, got {type(state).__name__}")
         b, n = self.channels, self.elements
         expected = {"z": (b,), "zeta": (b, n), "last_position": (b,), "has_last_position": (b,)}
-        arrays = {}
+        arrays: dict[str, Any] = {}
         for name, shape in expected.items():
             value = getattr(state, name)
             boolean = name == "has_last_position"
+            array: NDArray[Any]
             try:
-                array = np.asarray(value, dtype=np.bool_ if boolean else np.float64)
-            except (TypeError, ValueError):
+                if boolean:
+                    array = np.asarray(value, dtype=np.bool_)
+                else:  # numbers only: text or booleans are not positions
+                    array = np.asarray(real_array(value, f"state.{name}"), dtype=np.float64)
+            except (TypeError, ValueError) as error:
+                if isinstance(error, InputError):
+                    raise
                 raise InputError(
                     f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}"
                 ) from None

@@ -17,13 +17,12 @@ leave undetermined, and ``max_trace`` stops its wind-up under forgetting.
 
 from __future__ import annotations
 
-import numbers
 from typing import Any
 
 from numpy.typing import ArrayLike
 
 from . import _core
-from ._checks import as_log, as_real_list
+from ._checks import as_log, as_real_list, busy, guarded, is_borrow_error, real_number
 from ._typing import FloatArray
 from .errors import InputError, ParameterError
 
@@ -32,15 +31,11 @@ EXTRA_TERMS = ("Fc", "sigma2", "offset")
 
 
 def _real(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"`{name}` must be a real number, got {value!r}")
-    return float(value)
+    return real_number(value, name, ParameterError)
 
 
 def _scalar(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise InputError(f"`{name}` must be a real number, got {value!r}")
-    return float(value)
+    return real_number(value, name, InputError)
 
 
 class OnlineIdentifier(_core.OnlineIdentifier):
@@ -55,8 +50,12 @@ class OnlineIdentifier(_core.OnlineIdentifier):
     wind-up when the data stop exciting some direction (default 1000 × the initial trace).
 
     The first position relaxes every element there (ψ = 0). Raises :class:`ParameterError` for
-    settings that break their rule.
+    settings that break their rule. Calling it from a second thread while one is inside
+    ``run`` (which releases the GIL) raises :class:`~leuven_rt.errors.ConcurrentUseError` and
+    changes nothing.
     """
+
+    _fixed: tuple[int, list[float]]
 
     def __new__(
         cls,
@@ -74,7 +73,48 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         start = [0.0] * parameters if initial is None else as_real_list("initial", initial, parameters)
         covariance = _real("initial_covariance", initial_covariance)
         bound = 1e3 * parameters * covariance if max_trace is None else _real("max_trace", max_trace)
-        return super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
+        identifier = super().__new__(cls, delta, start, _real("forgetting", forgetting), covariance, bound)
+        # Fixed for the identifier's life, and readable while another thread runs it.
+        core: Any = super(OnlineIdentifier, identifier)
+        identifier._fixed = (core.elements, core.Delta)
+        return identifier
+
+    @property
+    def elements(self) -> int:
+        """Number N of Maxwell-slip elements (fixed break deflections)."""
+        return self._fixed[0]
+
+    @property
+    def Delta(self) -> list[float]:
+        """The fixed break deflections Δᵢ [m] (a copy)."""
+        return list(self._fixed[1])
+
+    @property
+    @guarded
+    def covariance_trace(self) -> float:
+        """trace(P) now."""
+        return super().covariance_trace
+
+    @property
+    @guarded
+    def covariance_resets(self) -> int:
+        """How many times the covariance left its range and was reset since construction or reset."""
+        return super().covariance_resets
+
+    def update(self, x: float, v: float, f: float) -> float:
+        """One sample of position ``x``, velocity ``v`` and force ``f``; returns the a priori
+        prediction error f − f̂ (a rejected sample changes nothing)."""
+        try:
+            return _core.OnlineIdentifier.update(self, x, v, f)
+        except RuntimeError as error:
+            if is_borrow_error(error):
+                raise busy(self) from None
+            raise
+
+    @guarded
+    def reset(self) -> None:
+        """Back to the state of construction."""
+        super().reset()
 
     def __repr__(self) -> str:
         return f"OnlineIdentifier(elements={self.elements}, estimate={self.estimate_dict()!r})"
@@ -86,16 +126,19 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         return tuple(f"W[{i}]" for i in range(self.elements)) + EXTRA_TERMS
 
     @property
+    @guarded
     def estimate(self) -> FloatArray:
         """A copy of the current estimate, shape (N + 3,), in the order of :attr:`names`."""
         return self._estimate()
 
     @property
+    @guarded
     def covariance(self) -> FloatArray:
         """A copy of the covariance P, shape (N + 3, N + 3); times the noise variance, it is the
         covariance of the estimate."""
         return self._covariance()
 
+    @guarded
     def run(self, x: ArrayLike, v: ArrayLike, f: ArrayLike) -> FloatArray:
         """Continues over a log of positions ``x`` [m], velocities ``v`` [m/s] and forces ``f``
         [N], each of shape (T,); returns the estimate after each sample, shape (T, N + 3).
@@ -105,6 +148,7 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         xs, vs, fs = as_log(x, v, f)
         return self._run(xs, vs, fs)
 
+    @guarded
     def predict(self, x: float, v: float) -> float:
         """The force that the current estimate predicts for position ``x`` and velocity ``v``,
         with the elements moved from where the last update left them; nothing changes."""

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from . import _core
+from ._checks import real_array
 from .errors import ParameterError
 
 #: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
@@ -29,18 +30,31 @@ REQUIRED_KEYS = ("Fc", "Fs", "Vs", "delta", "n")
 
 def _real(key: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"`{key}` must be a real number, got {value!r}")
-    return float(value)
+        raise ParameterError(f"`{key}` must be a real number, got {value!r:.80}")
+    try:
+        return float(value)
+    except OverflowError:  # an integer beyond the float range (a JSON file may hold one)
+        raise ParameterError(
+            f"`{key}` must be finite, got an integer of {len(str(value))} digits, beyond the float range"
+        ) from None
 
 
 def _reals(key: str, values: Any) -> tuple[float, ...]:
-    if isinstance(values, (str, bytes)) or (
-        not isinstance(values, (Sequence,)) and not hasattr(values, "__array__")
-    ):
-        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r}")
-    items = list(values.tolist() if hasattr(values, "tolist") else values)
+    if not isinstance(values, Sequence) and not hasattr(values, "__array__"):
+        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r:.80}")
+    if isinstance(values, (str, bytes, bytearray)):
+        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r:.80}")
+    if hasattr(values, "__array__"):  # numpy and friends: the dtype says what the items are
+        array = real_array(values, key, ParameterError)
+        if array.ndim != 1:
+            raise ParameterError(
+                f"`{key}` must be a flat sequence of real numbers, got shape {array.shape}: {values!r:.80}"
+            )
+        items = array.tolist()
+    else:
+        items = list(values)
     if any(isinstance(item, (list, tuple)) for item in items):
-        raise ParameterError(f"`{key}` must be a flat sequence of real numbers, got {values!r}")
+        raise ParameterError(f"`{key}` must be a flat sequence of real numbers, got {values!r:.80}")
     return tuple(_real(f"{key}[{index}]", item) for index, item in enumerate(items))
 
 
@@ -127,7 +141,7 @@ class Params:
         if not isinstance(mapping, Mapping):
             raise ParameterError(f"parameters must be a mapping, got {type(mapping).__name__}")
         known = {field.name for field in fields(cls)}
-        unknown = sorted(set(mapping) - known)
+        unknown = sorted(set(mapping) - known, key=repr)
         if unknown:
             raise ParameterError(f"unknown parameter keys {unknown}; expected keys among {sorted(known)}")
         missing = [key for key in REQUIRED_KEYS if key not in mapping]
@@ -144,18 +158,34 @@ class Params:
         """Parses JSON text of a parameter file."""
         try:
             mapping = json.loads(text)
-        except (TypeError, json.JSONDecodeError) as error:
+        except (TypeError, json.JSONDecodeError, UnicodeDecodeError) as error:
+            raise ParameterError(f"parameters must be JSON text of an object: {error}") from None
+        except RecursionError:
+            raise ParameterError("parameters must be JSON text of an object: nested too deeply") from None
+        except ValueError as error:  # e.g. an integer of more digits than Python converts
             raise ParameterError(f"parameters must be JSON text of an object: {error}") from None
         return cls.from_dict(mapping)
 
     def save(self, path: str | PathLike[str]) -> None:
-        """Writes the parameter file."""
-        Path(path).write_text(self.to_json() + "\n", encoding="utf-8")
+        """Writes the parameter file, atomically: a failure leaves no partial file behind."""
+        from ._output import write_text
+
+        write_text(path, self.to_json() + "\n")
 
     @classmethod
     def load(cls, path: str | PathLike[str]) -> Params:
-        """Reads a parameter file."""
-        return cls.from_json(Path(path).read_text(encoding="utf-8"))
+        """Reads a parameter file (UTF-8 JSON); a file that cannot be read or decoded raises
+        :class:`ParameterError` naming it."""
+        try:
+            text = Path(path).read_text(encoding="utf-8")
+        except UnicodeDecodeError as error:
+            raise ParameterError(f"parameter file {path} is not UTF-8 text: {error}") from None
+        except OSError as error:
+            raise ParameterError(f"cannot read parameter file {path}: {error.strerror or error}") from None
+        try:
+            return cls.from_json(text)
+        except ParameterError as error:
+            raise ParameterError(f"{path}: {error}") from None
 
 
 #: A parameter set: a :class:`Params`, or a mapping with its keys.

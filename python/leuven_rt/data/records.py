@@ -12,6 +12,7 @@ and is refused, since interpolating across it would invent the motion in between
 
 from __future__ import annotations
 
+import io
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -23,6 +24,7 @@ import numpy as np
 import scipy.io
 from numpy.typing import ArrayLike, NDArray
 
+from .._checks import real_array
 from .._typing import FloatArray
 from ..errors import DataError, ResamplingWarning
 
@@ -102,14 +104,8 @@ DataLike = Union[MotionData, str, "PathLike[str]", Mapping[str, ArrayLike]]
 
 
 def _column(name: str, values: ArrayLike) -> FloatArray:
-    try:
-        if np.iscomplexobj(values):
-            raise DataError(f"column `{name}` must be real, got complex values")
-        array = np.array(values, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        if isinstance(error, DataError):
-            raise
-        raise DataError(f"column `{name}` must hold real numbers: {error}") from None
+    raw = real_array(values, name, DataError, label=f"column `{name}`")
+    array = np.array(raw, dtype=np.float64)  # a copy of its own: the record is made read-only
     if array.ndim == 2 and 1 in array.shape:  # MATLAB stores vectors as (T, 1)
         array = array.ravel()
     if array.ndim != 1:
@@ -207,11 +203,34 @@ def resample_uniform(columns: Mapping[str, FloatArray]) -> dict[str, FloatArray]
 
 
 def load_csv(path: Path) -> dict[str, FloatArray]:
-    """Columns of a CSV file with a header line (docs/data-and-reports.md#measured-data: ``t,x,f[,v]``)."""
+    """Columns of a CSV file with a header line (docs/data-and-reports.md#measured-data: ``t,x,f[,v]``),
+    UTF-8 (a byte-order mark is allowed)."""
+    expected = (
+        f"a CSV file in UTF-8 with a header line `t,x,f[,v]` and at least {MIN_SAMPLES} rows of numbers"
+    )
     try:
-        table = np.genfromtxt(path, delimiter=",", names=True, dtype=np.float64, encoding="utf-8")
-    except (OSError, ValueError) as error:
-        raise DataError(f"cannot read {path} as CSV with a header line `t,x,f[,v]`: {error}") from None
+        raw = path.read_bytes()
+    except OSError as error:
+        raise DataError(f"cannot read {path}: {error.strerror or error}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise DataError(
+            f"{path} is not UTF-8 text (byte {error.start} is {raw[error.start]:#04x}): expected {expected}"
+        ) from None
+    if not text.strip():
+        raise DataError(f"{path} is empty: expected {expected}")
+    if "\0" in text:
+        raise DataError(f"{path} holds NUL characters, so it is not text: expected {expected}")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # numpy warns of odd files: refuse them instead
+            table = np.genfromtxt(
+                io.StringIO(text, newline=None), delimiter=",", names=True, dtype=np.float64, encoding=None
+            )
+    except (ValueError, IndexError, TypeError, Warning) as error:
+        message = " ".join(str(error).split())[:300]
+        raise DataError(f"cannot read {path} as {expected}: {message}") from None
     names = table.dtype.names
     if names is None:
         raise DataError(f"{path} must start with a header line naming the columns, e.g. `t,x,f`")
@@ -224,16 +243,23 @@ def load_emps(path: Path) -> dict[str, FloatArray]:
     """The EMPS benchmark's MATLAB file: f = gtau·vir [N], x = qm [m], t [s]."""
     try:
         content = scipy.io.loadmat(path)
-    # scipy raises NotImplementedError for v7.3 (HDF5) files and MatReadError for broken ones.
-    except (OSError, ValueError, NotImplementedError, scipy.io.matlab.MatReadError) as error:
-        raise DataError(f"cannot read {path} as a MATLAB .mat file: {error}") from None
+    # scipy raises NotImplementedError for v7.3 (HDF5) files, MatReadError for broken ones, and
+    # whatever its parser trips on (struct.error, zlib.error, KeyError, …) for bytes that are not
+    # a MAT file at all: every one means the same to the caller.
+    except Exception as error:
+        message = " ".join(str(error).split())[:300]
+        raise DataError(
+            f"cannot read {path} as a MATLAB .mat file: {type(error).__name__}: {message}"
+        ) from None
     missing = [name for name in ("t", "qm", "vir", "gtau") if name not in content]
     if missing:
         raise DataError(
             f"{path} lacks the EMPS variables {missing}: "
             "expected `t`, `qm`, `vir`, `gtau` (f = gtau·vir, x = qm)"
         )
-    gtau = np.asarray(content["gtau"], dtype=np.float64).ravel()
+    gtau = (
+        real_array(content["gtau"], "gtau", DataError, label=f"`gtau` in {path}").astype(np.float64).ravel()
+    )
     if gtau.size != 1:
         raise DataError(f"`gtau` in {path} must be one number, got shape {content['gtau'].shape}")
     vir = _column("vir", content["vir"])
@@ -270,9 +296,14 @@ def as_motion_data(data: DataLike) -> MotionData:
             f"`data` must be a MotionData, a path to a .csv or .mat file, or a mapping of columns "
             f"t, x, f[, v]; got {type(data).__name__}"
         )
-    checked: dict[str, Any] = check_columns(columns)
-    if not is_uniform(checked["t"]):
-        # New samples on a new grid: MotionData validates them, once.
-        resampled = resample_uniform(checked)
-        return MotionData(resampled["t"], resampled["x"], resampled["f"], resampled.get("v"), source)
+    try:
+        checked: dict[str, Any] = check_columns(columns)
+        if not is_uniform(checked["t"]):
+            # New samples on a new grid: MotionData validates them, once.
+            resampled = resample_uniform(checked)
+            return MotionData(resampled["t"], resampled["x"], resampled["f"], resampled.get("v"), source)
+    except DataError as error:
+        if source == "arrays":
+            raise
+        raise DataError(f"{source}: {error}") from None  # which file, when it came from one
     return MotionData._from_checked(checked, source)

@@ -94,6 +94,11 @@ CATALOGUE: dict[str, Effect] = {
 
 def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tuple[str, ...]:
     """Effect names from a list or a comma-separated string; unknown or repeated names are refused."""
+    given: object = names  # checked as what may come, not as what is declared
+    if not isinstance(given, (str, Sequence)) or isinstance(given, (bytes, bytearray)):
+        raise InputError(
+            f"`{argument}` must be effect names, as a list or comma-separated, got {names!r:.80}"
+        )
     items = [name.strip() for name in names.split(",")] if isinstance(names, str) else list(names)
     items = [name for name in items if name]
     if any(not isinstance(name, str) for name in items):

@@ -20,6 +20,7 @@ from typing import Any, cast
 import numpy as np
 from tqdm import tqdm
 
+from .._checks import real_number
 from .._core import MAX_ELEMENTS
 from .._typing import BoolArray
 from ..data.records import DataLike, as_motion_data
@@ -42,7 +43,11 @@ PRESLIDING_SHARE = 0.3
 STEADY_SHARE = 0.1
 
 
-def _check_options(elements: Any, held_out: Any, max_evaluations: Any) -> None:
+def _check_options(elements: Any, held_out: Any, max_evaluations: Any, cutoff: Any, asymmetric: Any) -> None:
+    if cutoff is not None:
+        real_number(cutoff, "cutoff")  # its range is the filter's to check, against the data's rate
+    if not isinstance(asymmetric, (bool, np.bool_)):
+        raise InputError(f"`asymmetric` must be True or False, got {asymmetric!r:.80}")
     if elements is not None and (
         isinstance(elements, bool)
         or not isinstance(elements, numbers.Integral)
@@ -105,11 +110,11 @@ def identify(
     :class:`DataError` (an :class:`InputError`).
     """
     began = time.perf_counter()
-    _check_options(elements, held_out, max_evaluations)
+    _check_options(elements, held_out, max_evaluations, cutoff, asymmetric)
     record = as_motion_data(data)
     split = round(record.samples * (1.0 - held_out))
     training = record.slice(0, split)
-    derivatives = estimate_derivatives(training, cutoff)
+    derivatives = estimate_derivatives(training, None if cutoff is None else real_number(cutoff, "cutoff"))
     noise = noise_floor(training.f)
     warnings: list[str] = []
     stages: list[Stage] = []

@@ -291,8 +291,12 @@ def plot(comparison: Comparison, path: str | Path) -> Path:
     return save(drawing, path, dpi=120)
 
 
+#: The file :func:`run` writes into its folder.
+FILE = "closed_loop.png"
+
+
 def run(out: Path) -> str:
     """``leuven-rt control``: the four compensations compared, the table and the figure
     ``closed_loop.png`` in ``out``."""
     comparison = compare()
-    return f"{report(comparison)}\nfigure: {plot(comparison, out / 'closed_loop.png')}"
+    return f"{report(comparison)}\nfigure: {plot(comparison, out / FILE)}"

@@ -21,6 +21,8 @@ from ..simulation import simulate_position
 #: What the story's machine really has; the baseline knows only coulomb and viscous.
 DEMO_TRUTH = ("coulomb", "viscous", "presliding_hysteresis", "position_dependence")
 DEMO_BASELINE = ("coulomb", "viscous")
+#: The files :func:`run_demo` and :func:`run_story` write into their folder.
+FILES = ("presliding_to_sliding.png", "diagnose.png")
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,7 @@ def run_demo(out: Path) -> DemoResult:
         axis.axhline(-params.Fs, color="grey", linestyle=":", linewidth=0.8)
         axis.grid(alpha=0.3)
     drawing.tight_layout()
-    figure_path = save(drawing, out / "presliding_to_sliding.png", dpi=120)
+    figure_path = save(drawing, out / FILES[0], dpi=120)
 
     assert params.Delta is not None  # the standard parameters have Maxwell-slip elements
     presliding = excitation.amplitude < 0.5 * params.Delta[-1]
@@ -105,4 +107,4 @@ def run_story(out: Path, progress: bool = False) -> Story:
     ``diagnose.png``."""
     hidden = tuple(name for name in DEMO_TRUTH if name not in DEMO_BASELINE)
     diagnosis = diagnose(make_hidden(DEMO_TRUTH, seed=0).data, DEMO_BASELINE, progress=progress)
-    return Story(diagnosis, hidden, plot_diagnosis(diagnosis, out / "diagnose.png"))
+    return Story(diagnosis, hidden, plot_diagnosis(diagnosis, out / FILES[1]))

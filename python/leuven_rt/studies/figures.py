@@ -172,7 +172,7 @@ def figure_1(out: Path, steps: Sequence[float] = FIG1_STEPS) -> FigureReport:
     inset.tick_params(labelsize=7)
     drawing.suptitle(f"Fig. 1: a force on a mass closes an internal loop at a (dt = {run.dt * 1e6:g} µs)")
     drawing.tight_layout()
-    path = save(drawing, out / "fig1_loop_closure.png", dpi=110)
+    path = save(drawing, out / FILES[0], dpi=110)
     report = FigureReport(path, [
         "Fig. 1, loop closure: largest |Ff[k+1] - Ff[k]| within 10 ms of point a",
         "| dt [s] | original Leuven [N] | modified [N] |",
@@ -256,7 +256,7 @@ def figure_4_5(out: Path) -> FigureReport:
         ax.legend(loc="upper left")
         ax.grid(alpha=0.3)
     drawing.tight_layout()
-    path = save(drawing, out / "fig4_5_nonlocal_memory.png", dpi=110)
+    path = save(drawing, out / FILES[1], dpi=110)
     difference = max(float(np.max(np.abs(s - m))) for _, s, m in runs)
     difference_exact = max(float(np.max(np.abs(s - m))) for _, s, m in exact)
     lines = [
@@ -337,7 +337,7 @@ def figure_free_response(out: Path) -> FigureReport:
         ax.legend(loc="upper right")
         ax.grid(alpha=0.3)
     drawing.tight_layout()
-    path = save(drawing, out / "free_response_memory.png", dpi=110)
+    path = save(drawing, out / FILES[2], dpi=110)
     lines = [
         f"Free response: m = {FREE_MASS} kg, k = {FREE_STIFFNESS:g} N/m, released at {FREE_START * 1e6:g} µm"
     ]
@@ -348,6 +348,10 @@ def figure_free_response(out: Path) -> FigureReport:
                      f"after {run.reversals} reversals without a closed loop)")  # fmt: skip
     lines.append(f"  Maxwell slip memory: {run.elements} numbers throughout, no limit on reversals")
     return FigureReport(path, lines)
+
+
+#: The files :func:`write_figures` writes into its folder.
+FILES = ("fig1_loop_closure.png", "fig4_5_nonlocal_memory.png", "free_response_memory.png")
 
 
 def write_figures(out: Path, quick: bool = False) -> list[FigureReport]:
