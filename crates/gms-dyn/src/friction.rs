@@ -2,6 +2,7 @@
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
 use gms_core::{Hysteresis, Params, Scheme, State};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::channels::{
@@ -105,11 +106,20 @@ where
                     })
                     .collect();
             }
-            states
+            // Channels on rayon's pool with the `parallel` feature, one after the other without.
+            #[cfg(feature = "parallel")]
+            let ran = states
                 .par_iter_mut()
                 .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
                 .map(|(state, (input, out))| run_one(state, input, out))
-                .collect()
+                .collect();
+            #[cfg(not(feature = "parallel"))]
+            let ran = states
+                .iter_mut()
+                .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
+                .map(|(state, (input, out))| run_one(state, input, out))
+                .collect();
+            ran
         })
     }
 

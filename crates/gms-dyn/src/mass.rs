@@ -2,6 +2,7 @@
 //! set and one set of mechanics, whatever the number of elements.
 
 use gms_core::{Hysteresis, MassSample, MassState, MassSystem, Params, Scheme, Spring, Trajectory};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::channels::{
@@ -115,13 +116,24 @@ where
                     })
                     .collect();
             }
-            states
+            // Channels on rayon's pool with the `parallel` feature, one after the other without.
+            #[cfg(feature = "parallel")]
+            let ran = states
                 .par_iter_mut()
                 .zip(u.par_chunks(samples))
                 .zip(friction.par_chunks_mut(samples))
                 .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
                 .map(|(((state, u), friction), (x, v))| run_one(state, u, friction, x, v))
-                .collect()
+                .collect();
+            #[cfg(not(feature = "parallel"))]
+            let ran = states
+                .iter_mut()
+                .zip(u.chunks(samples))
+                .zip(friction.chunks_mut(samples))
+                .zip(x.chunks_mut(samples).zip(v.chunks_mut(samples)))
+                .map(|(((state, u), friction), (x, v))| run_one(state, u, friction, x, v))
+                .collect();
+            ran
         })
     }
 

@@ -31,6 +31,7 @@ const INVALID_DT: i32 = LEUVEN_RT_INVALID_DT as i32;
 const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
 const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
 const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
+const INVALID_FILE: i32 = LEUVEN_RT_INVALID_FILE as i32;
 
 fn params(fc: f64, fs: f64, vs: f64, w: [f64; 10], delta: [f64; 10]) -> LeuvenParams<10> {
     let stribeck = Stribeck::new(fc, fs, vs, 2.0).unwrap();
@@ -144,7 +145,10 @@ fn compile_and_run(shared: bool) -> String {
         "gcc failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
-    let run = Command::new(&binary).output().expect("run the C program");
+    let run = Command::new(&binary)
+        .arg(env!("CARGO_TARGET_TMPDIR"))
+        .output()
+        .expect("run the C program");
     assert!(
         run.status.success(),
         "the C program failed ({}):\n{}",
@@ -265,6 +269,18 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
             10,
         ),
         ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
+        ("json_ok", OK, "-", 0),
+        ("json_unknown_key", INVALID_FILE, "-", 0),
+        ("json_missing_key", INVALID_FILE, "-", 0),
+        ("json_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+        ("json_elements_too_weak", INVALID_PARAMETER, "W", 0),
+        ("json_w_without_delta", INVALID_PARAMETER, "Delta", 0),
+        ("json_not_json", INVALID_FILE, "-", 0),
+        ("json_null", INVALID_POINTER, "-", 0),
+        ("json_bad_mode", INVALID_MODE, "-", 0),
+        ("file_ok", OK, "-", 0),
+        ("file_missing", INVALID_FILE, "-", 0),
+        ("file_null", INVALID_POINTER, "-", 0),
     ];
     for &(name, status, field, index) in expected {
         let got = printed
@@ -281,4 +297,12 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     assert_eq!(printed.values["step_null_handle_force"], 0.0);
     assert_eq!(printed.values["held_force_equal"], 1.0);
     assert_eq!(printed.values["untouched_after_rejections"], 1.0);
+    for named in [
+        "json_equals_struct",
+        "json_unknown_key_named",
+        "json_missing_key_named",
+        "file_missing_named",
+    ] {
+        assert_eq!(printed.values[named], 1.0, "{named}");
+    }
 }
