@@ -17,10 +17,12 @@ __all__ = [
     "MassEngine",
     "OnlineIdentifier",
     "ParameterError",
+    "__version__",
     "check_params",
     "slip_responses",
 ]
 
+__version__: str
 MAX_ELEMENTS: int
 MAX_ITERATIONS: int
 

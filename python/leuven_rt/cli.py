@@ -7,6 +7,8 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from . import __version__
+
 
 def _demo(arguments: argparse.Namespace) -> int:
     from .studies.demo import run_demo, run_story
@@ -87,6 +89,7 @@ def _control(arguments: argparse.Namespace) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``leuven-rt`` command."""
     parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
+    parser.add_argument("--version", action="version", version=f"leuven-rt {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
         "demo",
