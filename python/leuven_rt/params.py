@@ -8,12 +8,10 @@ takes it without checking it again.
 
 from __future__ import annotations
 
-import json
 import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, fields
 from os import PathLike
-from pathlib import Path
 from typing import Any
 
 from . import _core
@@ -137,11 +135,15 @@ class Params:
 
     def to_json(self) -> str:
         """The parameter file as JSON text."""
+        import json  # here, not at the top: `import leuven_rt` stays light
+
         return json.dumps(self.to_dict(), indent=2)
 
     @classmethod
     def from_json(cls, text: str) -> Params:
         """Parses JSON text of a parameter file."""
+        import json
+
         try:
             mapping = json.loads(text)
         except (TypeError, json.JSONDecodeError) as error:
@@ -150,12 +152,14 @@ class Params:
 
     def save(self, path: str | PathLike[str]) -> None:
         """Writes the parameter file."""
-        Path(path).write_text(self.to_json() + "\n", encoding="utf-8")
+        with open(path, "w", encoding="utf-8") as file:
+            file.write(self.to_json() + "\n")
 
     @classmethod
     def load(cls, path: str | PathLike[str]) -> Params:
         """Reads a parameter file."""
-        return cls.from_json(Path(path).read_text(encoding="utf-8"))
+        with open(path, encoding="utf-8") as file:
+            return cls.from_json(file.read())
 
 
 #: A parameter set: a :class:`Params`, or a mapping with its keys.

@@ -6,7 +6,7 @@
 //!
 //! The plant is a 1 kg mass with viscous damping whose friction is the model itself, with
 //! "true" parameters, run as an observer of the plant's position. A PD controller tracks
-//! x_d(t) = A·(1 − cos 2πft); the [`Compensator`] (feedforward mode, nominal parameters) adds
+//! `x_d(t) = A·(1 − cos 2πft)`; the [`Compensator`] (feedforward mode, nominal parameters) adds
 //! the friction force predicted along the desired velocity. The loop runs once without and once
 //! with compensation and prints the RMS tracking error of each. Then [`Params::simulate`] runs
 //! the whole desired-velocity signal in one call: the block form of the same model.
