@@ -31,7 +31,10 @@ fn params(fc: f64, fs: f64, w: [f64; 4]) -> Result<LeuvenParams<4>, Error> {
 fn desired(k: usize) -> (f64, f64) {
     let phase = 2.0 * core::f64::consts::PI * FREQUENCY * k as f64 * DT;
     let omega = 2.0 * core::f64::consts::PI * FREQUENCY;
-    (AMPLITUDE * (1.0 - phase.cos()), AMPLITUDE * omega * phase.sin())
+    (
+        AMPLITUDE * (1.0 - phase.cos()),
+        AMPLITUDE * omega * phase.sin(),
+    )
 }
 
 /// The RMS tracking error [m] of the loop, with or without the compensator.

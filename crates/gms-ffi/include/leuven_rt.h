@@ -1,6 +1,11 @@
 /*
  * leuven_rt.h: the friction compensator of leuven-rt for C (crates/gms-ffi).
- * Link with libgms_ffi.a (and -lm -lpthread -ldl) or libgms_ffi.so.
+ * Installed (scripts/c_package.sh, cargo-c): cc app.c $(pkg-config --cflags --libs leuven_rt),
+ * or CMake find_package(leuven_rt) and the target leuven_rt::leuven_rt (_static for libleuven_rt.a).
+ * In the cargo build tree: libgms_ffi.a (with -lm -lpthread -ldl) or libgms_ffi.so.
+ *
+ * Allocation: only the create functions allocate; step, set_params, reset and output never do.
+ * Ownership: the library copies what it needs from every argument; the caller keeps its arrays.
  */
 
 #ifndef LEUVEN_RT_H
