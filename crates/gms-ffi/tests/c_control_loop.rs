@@ -197,6 +197,57 @@ fn parse(output: &str) -> Printed {
     printed
 }
 
+/// Bad input: (status, field, index) for each check the C program prints.
+const EXPECTED: &[(&str, i32, &str, usize)] = &[
+    ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
+    ("nan_observer", NOT_FINITE_INPUT, "-", 0),
+    ("create_null_params", INVALID_POINTER, "-", 0),
+    ("create_null_out", INVALID_POINTER, "-", 0),
+    ("create_dt_zero", INVALID_DT, "dt", 0),
+    ("create_dt_negative", INVALID_DT, "dt", 0),
+    ("create_dt_nan", INVALID_DT, "dt", 0),
+    ("create_bad_mode", INVALID_MODE, "-", 0),
+    ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+    ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
+    ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
+    ("create_w3_negative", INVALID_PARAMETER, "W", 3),
+    ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
+    ("create_w_null", INVALID_POINTER, "-", 0),
+    ("create_too_many_elements", INVALID_PARAMETER, "elements", 0),
+    ("create_both_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+    ("create_no_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+    ("create_misaligned_params", INVALID_POINTER, "-", 0),
+    ("step_null_handle", INVALID_POINTER, "-", 0),
+    ("set_params_null_handle", INVALID_POINTER, "-", 0),
+    ("reset_null_handle", INVALID_POINTER, "-", 0),
+    ("output_null_handle", INVALID_POINTER, "-", 0),
+    ("create_ok", OK, "-", 0),
+    ("step_null_force", INVALID_POINTER, "-", 0),
+    ("step_inf", NOT_FINITE_INPUT, "-", 0),
+    ("step_nan", NOT_FINITE_INPUT, "-", 0),
+    ("step_huge_jump", NOT_FINITE_INPUT, "-", 0),
+    ("set_params_fc_negative", INVALID_PARAMETER, "Fc", 0),
+    (
+        "set_params_other_count",
+        INCOMPATIBLE_PARAMS,
+        "elements",
+        10,
+    ),
+    ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
+    ("json_ok", OK, "-", 0),
+    ("json_unknown_key", INVALID_FILE, "-", 0),
+    ("json_missing_key", INVALID_FILE, "-", 0),
+    ("json_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+    ("json_elements_too_weak", INVALID_PARAMETER, "W", 0),
+    ("json_w_without_delta", INVALID_PARAMETER, "Delta", 0),
+    ("json_not_json", INVALID_FILE, "-", 0),
+    ("json_null", INVALID_POINTER, "-", 0),
+    ("json_bad_mode", INVALID_MODE, "-", 0),
+    ("file_ok", OK, "-", 0),
+    ("file_missing", INVALID_FILE, "-", 0),
+    ("file_null", INVALID_POINTER, "-", 0),
+];
+
 #[test]
 fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     let output = compile_and_run(false);
@@ -232,56 +283,7 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     assert!(peak > 1.0, "peak feedforward force {peak}");
     eprintln!("largest relative difference C vs Rust: {largest:e}");
 
-    // Bad input: (status, field, index) for each case.
-    let expected: &[(&str, i32, &str, usize)] = &[
-        ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
-        ("nan_observer", NOT_FINITE_INPUT, "-", 0),
-        ("create_null_params", INVALID_POINTER, "-", 0),
-        ("create_null_out", INVALID_POINTER, "-", 0),
-        ("create_dt_zero", INVALID_DT, "dt", 0),
-        ("create_dt_negative", INVALID_DT, "dt", 0),
-        ("create_dt_nan", INVALID_DT, "dt", 0),
-        ("create_bad_mode", INVALID_MODE, "-", 0),
-        ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
-        ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
-        ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
-        ("create_w3_negative", INVALID_PARAMETER, "W", 3),
-        ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
-        ("create_w_null", INVALID_POINTER, "-", 0),
-        ("create_too_many_elements", INVALID_PARAMETER, "elements", 0),
-        ("create_both_hysteresis", INVALID_PARAMETER, "sigma0", 0),
-        ("create_no_hysteresis", INVALID_PARAMETER, "sigma0", 0),
-        ("create_misaligned_params", INVALID_POINTER, "-", 0),
-        ("step_null_handle", INVALID_POINTER, "-", 0),
-        ("set_params_null_handle", INVALID_POINTER, "-", 0),
-        ("reset_null_handle", INVALID_POINTER, "-", 0),
-        ("output_null_handle", INVALID_POINTER, "-", 0),
-        ("create_ok", OK, "-", 0),
-        ("step_null_force", INVALID_POINTER, "-", 0),
-        ("step_inf", NOT_FINITE_INPUT, "-", 0),
-        ("step_nan", NOT_FINITE_INPUT, "-", 0),
-        ("step_huge_jump", NOT_FINITE_INPUT, "-", 0),
-        ("set_params_fc_negative", INVALID_PARAMETER, "Fc", 0),
-        (
-            "set_params_other_count",
-            INCOMPATIBLE_PARAMS,
-            "elements",
-            10,
-        ),
-        ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
-        ("json_ok", OK, "-", 0),
-        ("json_unknown_key", INVALID_FILE, "-", 0),
-        ("json_missing_key", INVALID_FILE, "-", 0),
-        ("json_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
-        ("json_elements_too_weak", INVALID_PARAMETER, "W", 0),
-        ("json_w_without_delta", INVALID_PARAMETER, "Delta", 0),
-        ("json_not_json", INVALID_FILE, "-", 0),
-        ("json_null", INVALID_POINTER, "-", 0),
-        ("json_bad_mode", INVALID_MODE, "-", 0),
-        ("file_ok", OK, "-", 0),
-        ("file_missing", INVALID_FILE, "-", 0),
-        ("file_null", INVALID_POINTER, "-", 0),
-    ];
+    let expected = EXPECTED;
     for &(name, status, field, index) in expected {
         let got = printed
             .checks
