@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every check: formatting, lints, Rust tests and docs, the no_std proof, the Python build, Python
-# lint, types and stubs, and pytest.
+# lint, types and stubs, pytest, and the packages as users get them: the wheel and sdist, the
+# wheel in fresh virtualenvs without Rust, the installed C library, the gms-core crate.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 step() { printf '\n==> %s\n' "$*"; }
@@ -28,3 +29,10 @@ step "stubtest: the extension against its stub"
 python -m mypy.stubtest leuven_rt._core
 step "pytest"
 python -m pytest
+step "wheel and sdist (scripts/dist.sh); the wheel in new venvs without Rust (scripts/wheel_smoke.sh)"
+bash scripts/dist.sh
+bash scripts/wheel_smoke.sh
+step "C package: cargo cinstall, find_package and pkg-config against the install (scripts/c_package.sh)"
+bash scripts/c_package.sh
+step "cargo package -p gms-core (the crate as crates.io would get it)"
+cargo package --quiet -p gms-core --allow-dirty

@@ -9,6 +9,11 @@
 - :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
 - :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
 - :mod:`leuven_rt.reference`: the same discrete steps in plain numpy, written as the specification.
+- ``__version__``: the version of the package (the workspace version of Cargo.toml).
+
+``pip install leuven-rt`` needs numpy only; identification, diagnosis, the data loaders and the
+oracles need ``leuven-rt[analysis]`` (scipy, tqdm), the figures ``leuven-rt[plot]``
+(matplotlib), and say so when it is missing.
 
 The package's rooms: this public face at the top (with :mod:`.errors`), :mod:`.data` (logs in,
 signals out), the two workflows :mod:`.identification` and :mod:`.discrepancy`,
@@ -22,6 +27,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from ._core import MAX_ELEMENTS, MAX_ITERATIONS
+from ._core import __version__ as __version__
 from .compensation import Compensator
 from .errors import DataError, DivergenceError, InputError, ParameterError
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
@@ -65,6 +71,7 @@ __all__ = [
     "ParameterError",
     "Params",
     "Trace",
+    "__version__",
     "diagnose",
     "identify",
     "reference",

@@ -21,6 +21,7 @@ __all__ = [
     "slip_responses",
 ]
 
+__version__: str
 MAX_ELEMENTS: int
 MAX_ITERATIONS: int
 

@@ -11,6 +11,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ._extras import require
+
+require("matplotlib", extra="plot", needed_by="leuven-rt's figures")
+
 from matplotlib.figure import Figure
 
 from ._output import image_format, write_files

@@ -13,6 +13,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from . import __version__
 from .errors import ConcurrentUseError, DivergenceError, InputError, ParameterError, StackOverflowError
 
 #: The documented errors (docs/errors.md): each ends a command with its one-line message and
@@ -110,6 +111,7 @@ def _control(arguments: argparse.Namespace) -> int:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``leuven-rt`` command."""
     parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
+    parser.add_argument("--version", action="version", version=f"leuven-rt {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
         "demo",

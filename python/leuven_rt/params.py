@@ -8,12 +8,10 @@ takes it without checking it again.
 
 from __future__ import annotations
 
-import json
 import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, fields
 from os import PathLike
-from pathlib import Path
 from typing import Any
 
 from . import _core
@@ -151,11 +149,15 @@ class Params:
 
     def to_json(self) -> str:
         """The parameter file as JSON text."""
+        import json  # here, not at the top: `import leuven_rt` stays light
+
         return json.dumps(self.to_dict(), indent=2)
 
     @classmethod
     def from_json(cls, text: str) -> Params:
         """Parses JSON text of a parameter file."""
+        import json
+
         try:
             mapping = json.loads(text)
         except (TypeError, json.JSONDecodeError, UnicodeDecodeError) as error:
@@ -177,7 +179,8 @@ class Params:
         """Reads a parameter file (UTF-8 JSON); a file that cannot be read or decoded raises
         :class:`ParameterError` naming it."""
         try:
-            text = Path(path).read_text(encoding="utf-8")
+            with open(path, encoding="utf-8") as file:
+                text = file.read()
         except UnicodeDecodeError as error:
             raise ParameterError(f"parameter file {path} is not UTF-8 text: {error}") from None
         except OSError as error:

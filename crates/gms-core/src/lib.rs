@@ -52,3 +52,8 @@ pub use stribeck::Stribeck;
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 struct ReadmeSnippets;
+
+// The crate's own README (the page of the published crate) is tested the same way.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct CrateReadme;

@@ -2,6 +2,7 @@
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
 use gms_core::{Hysteresis, Params, Scheme, State};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::channels::{
@@ -115,8 +116,10 @@ where
                 });
             }
             // Only the first failing channel is kept: a result per channel would be one more
-            // allocation the size of the bank, and an infallible one.
-            states
+            // allocation the size of the bank, and an infallible one. Channels run on rayon's pool
+            // with the `parallel` feature, one after the other without.
+            #[cfg(feature = "parallel")]
+            let first_failure = states
                 .par_iter_mut()
                 .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
                 .enumerate()
@@ -125,7 +128,18 @@ where
                         .err()
                         .map(|error| (channel, error))
                 })
-                .min_by_key(|(channel, _)| *channel)
+                .min_by_key(|(channel, _)| *channel);
+            #[cfg(not(feature = "parallel"))]
+            let first_failure = states
+                .iter_mut()
+                .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
+                .enumerate()
+                .find_map(|(channel, (state, (input, out)))| {
+                    run_one(state, input, out)
+                        .err()
+                        .map(|error| (channel, error))
+                });
+            first_failure
         })
     }
 

@@ -2,6 +2,7 @@
 //! set and one set of mechanics, whatever the number of elements.
 
 use gms_core::{Hysteresis, MassSample, MassState, MassSystem, Params, Scheme, Spring, Trajectory};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::channels::{
@@ -131,7 +132,8 @@ where
                 });
             }
             // Only the first failing channel is kept (see the friction bank).
-            states
+            #[cfg(feature = "parallel")]
+            let first_failure = states
                 .par_iter_mut()
                 .zip(u.par_chunks(samples))
                 .zip(friction.par_chunks_mut(samples))
@@ -142,7 +144,20 @@ where
                         .err()
                         .map(|error| (channel, error))
                 })
-                .min_by_key(|(channel, _)| *channel)
+                .min_by_key(|(channel, _)| *channel);
+            #[cfg(not(feature = "parallel"))]
+            let first_failure = states
+                .iter_mut()
+                .zip(u.chunks(samples))
+                .zip(friction.chunks_mut(samples))
+                .zip(x.chunks_mut(samples).zip(v.chunks_mut(samples)))
+                .enumerate()
+                .find_map(|(channel, (((state, u), friction), (x, v)))| {
+                    run_one(state, u, friction, x, v)
+                        .err()
+                        .map(|error| (channel, error))
+                });
+            first_failure
         })
     }
 

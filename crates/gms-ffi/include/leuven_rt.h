@@ -1,6 +1,11 @@
 /*
  * leuven_rt.h: the friction compensator of leuven-rt for C (crates/gms-ffi).
- * Link with libgms_ffi.a (and -lm -lpthread -ldl) or libgms_ffi.so.
+ * Installed (scripts/c_package.sh, cargo-c): cc app.c $(pkg-config --cflags --libs leuven_rt),
+ * or CMake find_package(leuven_rt) and the target leuven_rt::leuven_rt (_static for libleuven_rt.a).
+ * In the cargo build tree: libgms_ffi.a (with -lm -lpthread -ldl) or libgms_ffi.so.
+ *
+ * Allocation: only the create functions allocate; step, set_params, reset and output never do.
+ * Ownership: the library copies what it needs from every argument; the caller keeps its arrays.
  */
 
 #ifndef LEUVEN_RT_H
@@ -13,6 +18,9 @@
 
 // The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 #define LEUVEN_RT_MAX_ELEMENTS 32
+
+// The size of `leuven_rt_error.message`, its terminating NUL included.
+#define LEUVEN_RT_ERROR_MESSAGE_SIZE 160
 
 // `mode` of `leuven_rt_compensator_create`: each sample's input is the desired velocity [m/s]
 // and the output the friction feedforward along the planned motion.
@@ -47,6 +55,9 @@ enum leuven_rt_status
   // The step produced a non-finite force (inputs far outside SI magnitudes). The output
   // holds the last good force.
   LEUVEN_RT_STEP_FAILED = 7,
+  // A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+  // has an unknown, missing or mistyped key; the error message names the key or the cause.
+  LEUVEN_RT_INVALID_FILE = 8,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -57,6 +68,11 @@ typedef int32_t leuven_rt_status;
 #endif // __cplusplus
 
 // One axis of friction compensation (opaque).
+//
+// Thread safety: a compensator may be created on one thread and used on another, but calls on
+// the same compensator must not overlap (guard it with a lock if several threads share it).
+// Different compensators are independent; `leuven_rt_status_message` may be called from any
+// thread.
 typedef struct leuven_rt_compensator leuven_rt_compensator;
 
 // Parameters of the modified Leuven model (docs/parameters.md), SI units.
@@ -64,6 +80,17 @@ typedef struct leuven_rt_compensator leuven_rt_compensator;
 // Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 // and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
 // `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+//
+// Rules (each broken one gives `LEUVEN_RT_INVALID_PARAMETER` and its member's name in
+// `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
+// `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
+// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
+// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`); and
+// `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the Stribeck curve
+// (breaking it reports field `W`, index 0).
+//
+// Ownership: the library copies what it needs while `create` or `set_params` runs; `W` and
+// `Delta` may be freed or changed once the call has returned.
 typedef struct leuven_rt_params {
   // Coulomb level [N].
   double Fc;
@@ -93,15 +120,19 @@ typedef struct leuven_rt_params {
   size_t elements;
 } leuven_rt_params;
 
-// Which parameter a `LEUVEN_RT_INVALID_PARAMETER` (or `LEUVEN_RT_INCOMPATIBLE_PARAMS`) is
-// about.
+// Why a call that takes one was refused. Every function with an `error` argument writes all of
+// it on every return when `error` is not null, whatever the status: on `LEUVEN_RT_OK`,
+// `field` and `message` are "" and `index` is 0.
 typedef struct leuven_rt_error {
-  // The field, spelled like the member of `leuven_rt_params` (a static string; "" when the
-  // status is not about one field).
+  // The parameter the status is about, spelled like the member of `leuven_rt_params` (a
+  // static string, never null; "" when the status is not about one parameter).
   const char *field;
   // For `W` and `Delta`: the offending element, or the expected number of elements when the
   // status is `LEUVEN_RT_INCOMPATIBLE_PARAMS`. 0 otherwise.
   size_t index;
+  // A one-line English description of the refusal with the values involved (for
+  // `LEUVEN_RT_INVALID_FILE`, the key or the cause), NUL-terminated, cut to fit.
+  char message[LEUVEN_RT_ERROR_MESSAGE_SIZE];
 } leuven_rt_error;
 
 #ifdef __cplusplus
@@ -113,8 +144,8 @@ const char *leuven_rt_status_message(int32_t status);
 
 // Creates a compensator at rest with sample time `dt` [s]; writes its handle to `*out`.
 //
-// `error` may be null; otherwise it receives the offending field on
-// `LEUVEN_RT_INVALID_PARAMETER`. On failure `*out` is left as it was.
+// `error` may be null; otherwise it is written on every return (see `leuven_rt_error`). On
+// failure `*out` is left as it was. The parameters are copied.
 //
 // # Safety
 // `params`, `out` and `error` must each be null or point to a valid object of their type;
@@ -124,6 +155,39 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               int32_t mode,
                                               struct leuven_rt_compensator **out,
                                               struct leuven_rt_error *error);
+
+// Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
+// and `leuven_rt.Params.save` write; keys of docs/parameters.md): `len` bytes at `json`, UTF-8,
+// no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
+//
+// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
+// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
+// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
+// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
+// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`: `Fc`, `Fs`).
+//
+// # Safety
+// `json` must be null or point to `len` readable bytes; `out` and `error` as in
+// `leuven_rt_compensator_create`.
+leuven_rt_status leuven_rt_compensator_create_from_json(const char *json,
+                                                        size_t len,
+                                                        double dt,
+                                                        int32_t mode,
+                                                        struct leuven_rt_compensator **out,
+                                                        struct leuven_rt_error *error);
+
+// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
+// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
+// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+//
+// # Safety
+// `path` must be null or a NUL-terminated string; `out` and `error` as in
+// `leuven_rt_compensator_create`.
+leuven_rt_status leuven_rt_compensator_create_from_file(const char *path,
+                                                        double dt,
+                                                        int32_t mode,
+                                                        struct leuven_rt_compensator **out,
+                                                        struct leuven_rt_error *error);
 
 // Destroys a compensator made by `leuven_rt_compensator_create`. Null is ignored.
 //
@@ -148,7 +212,7 @@ leuven_rt_status leuven_rt_compensator_step(struct leuven_rt_compensator *compen
 // Swaps in new parameters between two samples. The hysteresis force carries over, so the
 // output has no jump. The new set must have the same kind of hysteresis and number of
 // elements (`LEUVEN_RT_INCOMPATIBLE_PARAMS` otherwise, with the expected count in
-// `error->index`).
+// `error->index`). Does not allocate; `error`, if not null, is written on every return.
 //
 // # Safety
 // As `leuven_rt_compensator_create` for `params` and `error`; `compensator` null or live.

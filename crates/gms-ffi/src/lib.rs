@@ -18,9 +18,10 @@
 //! Every function returns a [`leuven_rt_status`] and never crashes on a pointer it can check:
 //! null and misaligned pointers are refused with `LEUVEN_RT_INVALID_POINTER`. (A dangling or
 //! foreign pointer cannot be told from a valid one; passing one is undefined behaviour, as
-//! everywhere in C.) A rejected call changes nothing. `create` allocates the compensator once
-//! (its size depends on the number of elements, chosen at run time); `step`, `set_params`,
-//! `reset` and `output` never allocate, and gms-core never panics.
+//! everywhere in C.) A rejected call changes nothing. The `create` functions allocate the
+//! compensator once (its size depends on the number of elements, chosen at run time; the JSON
+//! and file variants also allocate while parsing); `step`, `set_params`, `reset` and `output`
+//! never allocate, and gms-core never panics.
 //!
 //! The compensator itself, with its number of elements chosen at run time, is gms-dyn's
 //! [`Compensator`], the same one the Python package uses; this crate only
@@ -31,11 +32,17 @@
 //! a handle and back.
 #![allow(non_camel_case_types)] // C names: leuven_rt_params, leuven_rt_status, ...
 #![allow(non_snake_case)]
+// A refusal carries its message in a fixed buffer rather than a Box, so that `set_params`, which
+// runs in the control loop, never allocates; the larger Err variant is the price.
+#![allow(clippy::result_large_err)]
 // the paper's parameter names: Fc, Fs, W, Delta, ...
 // The doc comments are also the comments of the C header, where units read [m], [s], [N].
 #![allow(rustdoc::broken_intra_doc_links)]
 
 use core::ffi::{c_char, CStr};
+use core::fmt::{self, Write as _};
+
+use serde::Deserialize;
 
 use gms_core::{Error, Field, Mode};
 use gms_dyn::{Compensator, HysteresisKind, RawElements, RawParams};
@@ -45,6 +52,9 @@ pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
 
 // The header spells the number out; it must be gms-dyn's.
 const _: () = assert!(LEUVEN_RT_MAX_ELEMENTS == gms_dyn::MAX_ELEMENTS);
+
+/// The size of `leuven_rt_error.message`, its terminating NUL included.
+pub const LEUVEN_RT_ERROR_MESSAGE_SIZE: usize = 160;
 
 /// `mode` of `leuven_rt_compensator_create`: each sample's input is the desired velocity [m/s]
 /// and the output the friction feedforward along the planned motion.
@@ -77,12 +87,15 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
+    /// A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+    /// has an unknown, missing or mistyped key; the error message names the key or the cause.
+    LEUVEN_RT_INVALID_FILE = 8,
 }
 
 use leuven_rt_status::{
-    LEUVEN_RT_INCOMPATIBLE_PARAMS, LEUVEN_RT_INVALID_DT, LEUVEN_RT_INVALID_MODE,
-    LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_INVALID_POINTER, LEUVEN_RT_NOT_FINITE_INPUT,
-    LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
+    LEUVEN_RT_INCOMPATIBLE_PARAMS, LEUVEN_RT_INVALID_DT, LEUVEN_RT_INVALID_FILE,
+    LEUVEN_RT_INVALID_MODE, LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_INVALID_POINTER,
+    LEUVEN_RT_NOT_FINITE_INPUT, LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
 };
 
 /// Parameters of the modified Leuven model (docs/parameters.md), SI units.
@@ -90,6 +103,17 @@ use leuven_rt_status::{
 /// Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 /// and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
 /// `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+///
+/// Rules (each broken one gives `LEUVEN_RT_INVALID_PARAMETER` and its member's name in
+/// `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
+/// `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
+/// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
+/// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`); and
+/// `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the Stribeck curve
+/// (breaking it reports field `W`, index 0).
+///
+/// Ownership: the library copies what it needs while `create` or `set_params` runs; `W` and
+/// `Delta` may be freed or changed once the call has returned.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct leuven_rt_params {
@@ -121,20 +145,29 @@ pub struct leuven_rt_params {
     pub elements: usize,
 }
 
-/// Which parameter a `LEUVEN_RT_INVALID_PARAMETER` (or `LEUVEN_RT_INCOMPATIBLE_PARAMS`) is
-/// about.
+/// Why a call that takes one was refused. Every function with an `error` argument writes all of
+/// it on every return when `error` is not null, whatever the status: on `LEUVEN_RT_OK`,
+/// `field` and `message` are "" and `index` is 0.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct leuven_rt_error {
-    /// The field, spelled like the member of `leuven_rt_params` (a static string; "" when the
-    /// status is not about one field).
+    /// The parameter the status is about, spelled like the member of `leuven_rt_params` (a
+    /// static string, never null; "" when the status is not about one parameter).
     pub field: *const c_char,
     /// For `W` and `Delta`: the offending element, or the expected number of elements when the
     /// status is `LEUVEN_RT_INCOMPATIBLE_PARAMS`. 0 otherwise.
     pub index: usize,
+    /// A one-line English description of the refusal with the values involved (for
+    /// `LEUVEN_RT_INVALID_FILE`, the key or the cause), NUL-terminated, cut to fit.
+    pub message: [c_char; LEUVEN_RT_ERROR_MESSAGE_SIZE],
 }
 
 /// One axis of friction compensation (opaque).
+///
+/// Thread safety: a compensator may be created on one thread and used on another, but calls on
+/// the same compensator must not overlap (guard it with a lock if several threads share it).
+/// Different compensators are independent; `leuven_rt_status_message` may be called from any
+/// thread.
 pub struct leuven_rt_compensator {
     compensator: Compensator,
 }
@@ -151,6 +184,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
+        8 => c"the parameter file cannot be read or has an unknown, missing or mistyped key",
         _ => c"unknown status",
     };
     message.as_ptr()
@@ -158,8 +192,8 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
 
 /// Creates a compensator at rest with sample time `dt` [s]; writes its handle to `*out`.
 ///
-/// `error` may be null; otherwise it receives the offending field on
-/// `LEUVEN_RT_INVALID_PARAMETER`. On failure `*out` is left as it was.
+/// `error` may be null; otherwise it is written on every return (see `leuven_rt_error`). On
+/// failure `*out` is left as it was. The parameters are copied.
 ///
 /// # Safety
 /// `params`, `out` and `error` must each be null or point to a valid object of their type;
@@ -172,30 +206,97 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
     out: *mut *mut leuven_rt_compensator,
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
-    // SAFETY: the caller passes null or a valid pointer (the function's contract).
-    let Some(out) = (unsafe { checked_mut(out) }) else {
-        return LEUVEN_RT_INVALID_POINTER;
-    };
-    let mode = match mode {
-        LEUVEN_RT_MODE_FEEDFORWARD => Mode::Feedforward,
-        LEUVEN_RT_MODE_OBSERVER => Mode::Observer,
-        _ => return LEUVEN_RT_INVALID_MODE,
-    };
-    // SAFETY: as above, for `params` and the arrays it points to.
-    let Some(raw) = (unsafe { raw_params(params) }) else {
-        return LEUVEN_RT_INVALID_POINTER;
-    };
-    let built = raw
-        .validate()
-        .and_then(|set| Compensator::new(&set, dt, mode));
-    match built {
-        Ok(compensator) => {
-            *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
-            LEUVEN_RT_OK
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        // SAFETY: as above, for `params` and the arrays it points to.
+        let raw = unsafe { raw_params(params) }.ok_or(Refusal::pointer("params"))?;
+        build(&raw, dt, mode, out)
+    });
+    finish(created, error)
+}
+
+/// Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
+/// and `leuven_rt.Params.save` write; keys of docs/parameters.md): `len` bytes at `json`, UTF-8,
+/// no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
+///
+/// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
+/// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
+/// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
+/// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
+/// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`: `Fc`, `Fs`).
+///
+/// # Safety
+/// `json` must be null or point to `len` readable bytes; `out` and `error` as in
+/// `leuven_rt_compensator_create`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
+    json: *const c_char,
+    len: usize,
+    dt: f64,
+    mode: i32,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if json.is_null() || len > isize::MAX as usize {
+            return Err(Refusal::pointer("json"));
         }
-        // SAFETY: as above, for `error`.
-        Err(reason) => report(reason, unsafe { checked_mut(error) }),
-    }
+        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
+        // alignment.
+        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
+        from_json_text(text, dt, mode, out)
+    });
+    finish(created, error)
+}
+
+/// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
+/// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
+/// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+///
+/// # Safety
+/// `path` must be null or a NUL-terminated string; `out` and `error` as in
+/// `leuven_rt_compensator_create`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
+    path: *const c_char,
+    dt: f64,
+    mode: i32,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if path.is_null() {
+            return Err(Refusal::pointer("path"));
+        }
+        // SAFETY: non-null and NUL-terminated by the caller's contract.
+        let path = unsafe { CStr::from_ptr(path) };
+        let path = std::path::Path::new(path.to_str().map_err(|_| {
+            Refusal::new(
+                LEUVEN_RT_INVALID_FILE,
+                c"",
+                0,
+                format_args!("the path is not UTF-8"),
+            )
+        })?);
+        let text = std::fs::read(path).map_err(|reason| {
+            Refusal::new(
+                LEUVEN_RT_INVALID_FILE,
+                c"",
+                0,
+                format_args!("cannot read {}: {reason}", path.display()),
+            )
+        })?;
+        from_json_text(&text, dt, mode, out)
+    });
+    finish(created, error)
 }
 
 /// Destroys a compensator made by `leuven_rt_compensator_create`. Null is ignored.
@@ -256,7 +357,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_step(
 /// Swaps in new parameters between two samples. The hysteresis force carries over, so the
 /// output has no jump. The new set must have the same kind of hysteresis and number of
 /// elements (`LEUVEN_RT_INCOMPATIBLE_PARAMS` otherwise, with the expected count in
-/// `error->index`).
+/// `error->index`). Does not allocate; `error`, if not null, is written on every return.
 ///
 /// # Safety
 /// As `leuven_rt_compensator_create` for `params` and `error`; `compensator` null or live.
@@ -267,16 +368,18 @@ pub unsafe extern "C" fn leuven_rt_compensator_set_params(
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
     // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (Some(compensator), Some(raw)) = (unsafe { checked_mut(compensator) }, unsafe {
-        raw_params(params)
-    }) else {
-        return LEUVEN_RT_INVALID_POINTER;
-    };
-    match compensator.compensator.set_raw_params(&raw) {
-        Ok(()) => LEUVEN_RT_OK,
-        // SAFETY: as above, for `error`.
-        Err(reason) => report(reason, unsafe { checked_mut(error) }),
-    }
+    let (compensator, error) = unsafe { (checked_mut(compensator), checked_mut(error)) };
+    let swapped = compensator
+        .ok_or(Refusal::pointer("compensator"))
+        .and_then(|compensator| {
+            // SAFETY: as above, for `params` and the arrays it points to.
+            let raw = unsafe { raw_params(params) }.ok_or(Refusal::pointer("params"))?;
+            compensator
+                .compensator
+                .set_raw_params(&raw)
+                .map_err(Refusal::from_dyn)
+        });
+    finish(swapped, error)
 }
 
 /// Back to rest: relaxed state, no previous position, output 0.
@@ -398,53 +501,245 @@ unsafe fn raw_params<'a>(params: *const leuven_rt_params) -> Option<RawParams<'a
     })
 }
 
-/// The status of a refused parameter set, with the detail written where the caller wants it.
-fn report(reason: gms_dyn::Error, detail: Option<&mut leuven_rt_error>) -> leuven_rt_status {
-    use gms_dyn::Error as Refused;
-    let (status, field, index) = match reason {
-        Refused::Core(Error::NotPositive {
-            field: Field::dt, ..
-        }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
-        Refused::Core(Error::Element { field, index, .. }) => {
-            (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
-        }
-        Refused::Core(
-            Error::NotPositive { field, .. }
-            | Error::Negative { field, .. }
-            | Error::StaticBelowCoulomb { field, .. },
-        ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0),
-        Refused::Core(Error::ForceSumOverflow { index, .. }) => {
-            (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
-        }
-        Refused::Core(
-            Error::StiffnessOverflow { index, .. } | Error::DeltaTooNarrow { index, .. },
-        ) => (LEUVEN_RT_INVALID_PARAMETER, c"Delta", index),
-        Refused::Core(Error::StiffnessSumOverflow) => (LEUVEN_RT_INVALID_PARAMETER, c"Delta", 0),
-        // sum(W) <= max(Fs, Fs_neg): the elements are too weak.
-        Refused::Core(Error::ElementsTooWeak { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
-        Refused::BothHysteresis | Refused::NeitherHysteresis => {
-            (LEUVEN_RT_INVALID_PARAMETER, c"sigma0", 0)
-        }
-        Refused::EmptyElements
-        | Refused::TooManyElements { .. }
-        | Refused::ElementLengths { .. } => (LEUVEN_RT_INVALID_PARAMETER, c"elements", 0),
-        Refused::Incompatible { expected, .. } => (
-            LEUVEN_RT_INCOMPATIBLE_PARAMS,
-            c"elements",
-            match expected {
-                HysteresisKind::Linear => 0,
-                HysteresisKind::Maxwell { elements } => elements,
-            },
-        ),
-        _ => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
-    };
-    if let Some(detail) = detail {
-        *detail = leuven_rt_error {
-            field: field.as_ptr(),
+/// A refused call: its status, the field and index of `leuven_rt_error` and the message,
+/// formatted into a fixed buffer (no allocation, so that `set_params` stays allocation-free).
+struct Refusal {
+    status: leuven_rt_status,
+    field: &'static CStr,
+    index: usize,
+    message: Message,
+}
+
+impl Refusal {
+    fn new(
+        status: leuven_rt_status,
+        field: &'static CStr,
+        index: usize,
+        message: fmt::Arguments<'_>,
+    ) -> Self {
+        let mut buffer = Message::default();
+        // Message::write_str never fails; a long message is cut.
+        let _ = buffer.write_fmt(message);
+        Refusal {
+            status,
+            field,
             index,
+            message: buffer,
+        }
+    }
+
+    /// A null or misaligned pointer argument.
+    fn pointer(argument: &str) -> Self {
+        Refusal::new(
+            LEUVEN_RT_INVALID_POINTER,
+            c"",
+            0,
+            format_args!("the pointer `{argument}` is null or misaligned"),
+        )
+    }
+
+    /// A refused parameter set (or `dt`).
+    fn from_dyn(reason: gms_dyn::Error) -> Self {
+        use gms_dyn::Error as Refused;
+        let (status, field, index) = match reason {
+            Refused::Core(Error::NotPositive {
+                field: Field::dt, ..
+            }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
+            Refused::Core(Error::Element { field, index, .. }) => {
+                (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
+            }
+            Refused::Core(
+                Error::NotPositive { field, .. }
+                | Error::Negative { field, .. }
+                | Error::StaticBelowCoulomb { field, .. },
+            ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0),
+            Refused::Core(Error::ForceSumOverflow { index, .. }) => {
+                (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
+            }
+            Refused::Core(
+                Error::StiffnessOverflow { index, .. } | Error::DeltaTooNarrow { index, .. },
+            ) => (LEUVEN_RT_INVALID_PARAMETER, c"Delta", index),
+            Refused::Core(Error::StiffnessSumOverflow) => {
+                (LEUVEN_RT_INVALID_PARAMETER, c"Delta", 0)
+            }
+            // sum(W) <= max(Fs, Fs_neg): the elements are too weak.
+            Refused::Core(Error::ElementsTooWeak { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"W", 0),
+            Refused::BothHysteresis | Refused::NeitherHysteresis => {
+                (LEUVEN_RT_INVALID_PARAMETER, c"sigma0", 0)
+            }
+            Refused::EmptyElements
+            | Refused::TooManyElements { .. }
+            | Refused::ElementLengths { .. } => (LEUVEN_RT_INVALID_PARAMETER, c"elements", 0),
+            Refused::Incompatible { expected, .. } => (
+                LEUVEN_RT_INCOMPATIBLE_PARAMS,
+                c"elements",
+                match expected {
+                    HysteresisKind::Linear => 0,
+                    HysteresisKind::Maxwell { elements } => elements,
+                },
+            ),
+            _ => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
         };
+        Refusal::new(status, field, index, format_args!("{reason}"))
+    }
+}
+
+/// A NUL-terminated message of at most `LEUVEN_RT_ERROR_MESSAGE_SIZE` bytes, cut at a character
+/// boundary.
+struct Message {
+    bytes: [u8; LEUVEN_RT_ERROR_MESSAGE_SIZE],
+    len: usize,
+}
+
+impl Default for Message {
+    fn default() -> Self {
+        Message {
+            bytes: [0; LEUVEN_RT_ERROR_MESSAGE_SIZE],
+            len: 0,
+        }
+    }
+}
+
+impl fmt::Write for Message {
+    fn write_str(&mut self, text: &str) -> fmt::Result {
+        for character in text.chars() {
+            let mut utf8 = [0; 4];
+            let encoded = character.encode_utf8(&mut utf8).as_bytes();
+            // One byte stays for the NUL; an interior NUL would cut the C string, so it is
+            // written as a space.
+            if self.len + encoded.len() >= LEUVEN_RT_ERROR_MESSAGE_SIZE {
+                break;
+            }
+            for &byte in encoded {
+                self.bytes[self.len] = if byte == 0 { b' ' } else { byte };
+                self.len += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The status of a call, with `error` (if given) written for every status.
+fn finish(result: Result<(), Refusal>, error: Option<&mut leuven_rt_error>) -> leuven_rt_status {
+    let (status, field, index, message) = match result {
+        Ok(()) => (LEUVEN_RT_OK, c"", 0, [0; LEUVEN_RT_ERROR_MESSAGE_SIZE]),
+        Err(refusal) => (
+            refusal.status,
+            refusal.field,
+            refusal.index,
+            refusal.message.bytes,
+        ),
+    };
+    if let Some(error) = error {
+        error.field = field.as_ptr();
+        error.index = index;
+        for (to, from) in error.message.iter_mut().zip(message) {
+            *to = c_char::from_ne_bytes([from]);
+        }
     }
     status
+}
+
+/// `mode` as gms-core's, or `LEUVEN_RT_INVALID_MODE`.
+fn checked_mode(mode: i32) -> Result<Mode, Refusal> {
+    match mode {
+        LEUVEN_RT_MODE_FEEDFORWARD => Ok(Mode::Feedforward),
+        LEUVEN_RT_MODE_OBSERVER => Ok(Mode::Observer),
+        _ => Err(Refusal::new(
+            LEUVEN_RT_INVALID_MODE,
+            c"",
+            0,
+            format_args!(
+                "mode {mode} is neither LEUVEN_RT_MODE_FEEDFORWARD (0) nor LEUVEN_RT_MODE_OBSERVER (1)"
+            ),
+        )),
+    }
+}
+
+/// Validates `raw`, builds the compensator and writes its handle to `*out`.
+fn build(
+    raw: &RawParams<'_>,
+    dt: f64,
+    mode: Mode,
+    out: &mut *mut leuven_rt_compensator,
+) -> Result<(), Refusal> {
+    let compensator = raw
+        .validate()
+        .and_then(|set| Compensator::new(&set, dt, mode))
+        .map_err(Refusal::from_dyn)?;
+    *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
+    Ok(())
+}
+
+/// A parameter file: the keys of docs/parameters.md, no others.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParamsFile {
+    Fc: f64,
+    Fs: f64,
+    Vs: f64,
+    delta: f64,
+    n: f64,
+    #[serde(default)]
+    sigma1: f64,
+    #[serde(default)]
+    sigma2: f64,
+    W: Option<Vec<f64>>,
+    Delta: Option<Vec<f64>>,
+    Fc_neg: Option<f64>,
+    Fs_neg: Option<f64>,
+    sigma0: Option<f64>,
+}
+
+/// Parses the text of a parameter file and builds the compensator from it.
+fn from_json_text(
+    text: &[u8],
+    dt: f64,
+    mode: Mode,
+    out: &mut *mut leuven_rt_compensator,
+) -> Result<(), Refusal> {
+    let file: ParamsFile = serde_json::from_slice(text).map_err(|reason| {
+        Refusal::new(
+            LEUVEN_RT_INVALID_FILE,
+            c"",
+            0,
+            format_args!("parameter file: {reason}"),
+        )
+    })?;
+    let elements = match (&file.W, &file.Delta) {
+        (Some(w), Some(delta)) => Some(RawElements { w, delta }),
+        (None, None) => None,
+        (Some(_), None) | (None, Some(_)) => {
+            let (given, missing) = if file.W.is_some() {
+                ("W", c"Delta")
+            } else {
+                ("Delta", c"W")
+            };
+            return Err(Refusal::new(
+                LEUVEN_RT_INVALID_PARAMETER,
+                missing,
+                0,
+                format_args!(
+                    "parameter file: `{given}` is given without `{}`; Maxwell slip needs both",
+                    missing.to_string_lossy()
+                ),
+            ));
+        }
+    };
+    let raw = RawParams {
+        fc: file.Fc,
+        fs: file.Fs,
+        vs: file.Vs,
+        delta: file.delta,
+        n: file.n,
+        sigma1: file.sigma1,
+        sigma2: file.sigma2,
+        fc_neg: file.Fc_neg.unwrap_or(file.Fc),
+        fs_neg: file.Fs_neg.unwrap_or(file.Fs),
+        sigma0: file.sigma0,
+        elements,
+    };
+    build(&raw, dt, mode, out)
 }
 
 /// The member of `leuven_rt_params` that holds `field`.

@@ -31,6 +31,7 @@ const INVALID_DT: i32 = LEUVEN_RT_INVALID_DT as i32;
 const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
 const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
 const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
+const INVALID_FILE: i32 = LEUVEN_RT_INVALID_FILE as i32;
 
 fn params(fc: f64, fs: f64, vs: f64, w: [f64; 10], delta: [f64; 10]) -> LeuvenParams<10> {
     let stribeck = Stribeck::new(fc, fs, vs, 2.0).unwrap();
@@ -144,7 +145,10 @@ fn compile_and_run(shared: bool) -> String {
         "gcc failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
-    let run = Command::new(&binary).output().expect("run the C program");
+    let run = Command::new(&binary)
+        .arg(env!("CARGO_TARGET_TMPDIR"))
+        .output()
+        .expect("run the C program");
     assert!(
         run.status.success(),
         "the C program failed ({}):\n{}",
@@ -193,6 +197,57 @@ fn parse(output: &str) -> Printed {
     printed
 }
 
+/// Bad input: (status, field, index) for each check the C program prints.
+const EXPECTED: &[(&str, i32, &str, usize)] = &[
+    ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
+    ("nan_observer", NOT_FINITE_INPUT, "-", 0),
+    ("create_null_params", INVALID_POINTER, "-", 0),
+    ("create_null_out", INVALID_POINTER, "-", 0),
+    ("create_dt_zero", INVALID_DT, "dt", 0),
+    ("create_dt_negative", INVALID_DT, "dt", 0),
+    ("create_dt_nan", INVALID_DT, "dt", 0),
+    ("create_bad_mode", INVALID_MODE, "-", 0),
+    ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+    ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
+    ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
+    ("create_w3_negative", INVALID_PARAMETER, "W", 3),
+    ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
+    ("create_w_null", INVALID_POINTER, "-", 0),
+    ("create_too_many_elements", INVALID_PARAMETER, "elements", 0),
+    ("create_both_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+    ("create_no_hysteresis", INVALID_PARAMETER, "sigma0", 0),
+    ("create_misaligned_params", INVALID_POINTER, "-", 0),
+    ("step_null_handle", INVALID_POINTER, "-", 0),
+    ("set_params_null_handle", INVALID_POINTER, "-", 0),
+    ("reset_null_handle", INVALID_POINTER, "-", 0),
+    ("output_null_handle", INVALID_POINTER, "-", 0),
+    ("create_ok", OK, "-", 0),
+    ("step_null_force", INVALID_POINTER, "-", 0),
+    ("step_inf", NOT_FINITE_INPUT, "-", 0),
+    ("step_nan", NOT_FINITE_INPUT, "-", 0),
+    ("step_huge_jump", NOT_FINITE_INPUT, "-", 0),
+    ("set_params_fc_negative", INVALID_PARAMETER, "Fc", 0),
+    (
+        "set_params_other_count",
+        INCOMPATIBLE_PARAMS,
+        "elements",
+        10,
+    ),
+    ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
+    ("json_ok", OK, "-", 0),
+    ("json_unknown_key", INVALID_FILE, "-", 0),
+    ("json_missing_key", INVALID_FILE, "-", 0),
+    ("json_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+    ("json_elements_too_weak", INVALID_PARAMETER, "W", 0),
+    ("json_w_without_delta", INVALID_PARAMETER, "Delta", 0),
+    ("json_not_json", INVALID_FILE, "-", 0),
+    ("json_null", INVALID_POINTER, "-", 0),
+    ("json_bad_mode", INVALID_MODE, "-", 0),
+    ("file_ok", OK, "-", 0),
+    ("file_missing", INVALID_FILE, "-", 0),
+    ("file_null", INVALID_POINTER, "-", 0),
+];
+
 #[test]
 fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     let output = compile_and_run(false);
@@ -228,44 +283,7 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     assert!(peak > 1.0, "peak feedforward force {peak}");
     eprintln!("largest relative difference C vs Rust: {largest:e}");
 
-    // Bad input: (status, field, index) for each case.
-    let expected: &[(&str, i32, &str, usize)] = &[
-        ("nan_feedforward", NOT_FINITE_INPUT, "-", 0),
-        ("nan_observer", NOT_FINITE_INPUT, "-", 0),
-        ("create_null_params", INVALID_POINTER, "-", 0),
-        ("create_null_out", INVALID_POINTER, "-", 0),
-        ("create_dt_zero", INVALID_DT, "dt", 0),
-        ("create_dt_negative", INVALID_DT, "dt", 0),
-        ("create_dt_nan", INVALID_DT, "dt", 0),
-        ("create_bad_mode", INVALID_MODE, "-", 0),
-        ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
-        ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
-        ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
-        ("create_w3_negative", INVALID_PARAMETER, "W", 3),
-        ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
-        ("create_w_null", INVALID_POINTER, "-", 0),
-        ("create_too_many_elements", INVALID_PARAMETER, "elements", 0),
-        ("create_both_hysteresis", INVALID_PARAMETER, "sigma0", 0),
-        ("create_no_hysteresis", INVALID_PARAMETER, "sigma0", 0),
-        ("create_misaligned_params", INVALID_POINTER, "-", 0),
-        ("step_null_handle", INVALID_POINTER, "-", 0),
-        ("set_params_null_handle", INVALID_POINTER, "-", 0),
-        ("reset_null_handle", INVALID_POINTER, "-", 0),
-        ("output_null_handle", INVALID_POINTER, "-", 0),
-        ("create_ok", OK, "-", 0),
-        ("step_null_force", INVALID_POINTER, "-", 0),
-        ("step_inf", NOT_FINITE_INPUT, "-", 0),
-        ("step_nan", NOT_FINITE_INPUT, "-", 0),
-        ("step_huge_jump", NOT_FINITE_INPUT, "-", 0),
-        ("set_params_fc_negative", INVALID_PARAMETER, "Fc", 0),
-        (
-            "set_params_other_count",
-            INCOMPATIBLE_PARAMS,
-            "elements",
-            10,
-        ),
-        ("set_params_other_kind", INCOMPATIBLE_PARAMS, "elements", 10),
-    ];
+    let expected = EXPECTED;
     for &(name, status, field, index) in expected {
         let got = printed
             .checks
@@ -281,4 +299,12 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
     assert_eq!(printed.values["step_null_handle_force"], 0.0);
     assert_eq!(printed.values["held_force_equal"], 1.0);
     assert_eq!(printed.values["untouched_after_rejections"], 1.0);
+    for named in [
+        "json_equals_struct",
+        "json_unknown_key_named",
+        "json_missing_key_named",
+        "file_missing_named",
+    ] {
+        assert_eq!(printed.values[named], 1.0, "{named}");
+    }
 }

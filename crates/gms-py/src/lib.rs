@@ -25,6 +25,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ParameterError", py.get_type::<errors::ParameterError>())?;
     m.add("InputError", py.get_type::<errors::InputError>())?;
     m.add("DivergenceError", py.get_type::<errors::DivergenceError>())?;
+    // The version of the package: the workspace's, which maturin also gives the wheel.
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ELEMENTS", gms_dyn::MAX_ELEMENTS)?;
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;

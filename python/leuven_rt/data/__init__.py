@@ -11,6 +11,11 @@
 It imports only the public face, never a workflow.
 """
 
+from .._extras import require
+
+require("scipy", extra="analysis", needed_by="leuven_rt.data")
+
+
 from .records import MotionData, as_motion_data, load_columns
 from .regression import LinearFit, fit_linear
 from .segments import Segments, find_segments

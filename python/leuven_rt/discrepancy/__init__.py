@@ -10,6 +10,11 @@ bank driven by the model's state), :mod:`.model` (fits),
 It works from the data toolkit :mod:`leuven_rt.data`, not from the identification workflow.
 """
 
+from .._extras import require
+
+require("scipy", "tqdm", extra="analysis", needed_by="leuven_rt.discrepancy")
+
+
 from .diagnose import DEFAULT_BASELINE, diagnose
 from .effects import CATALOGUE, parse_effects
 from .report import Diagnosis, Step

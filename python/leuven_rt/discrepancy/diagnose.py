@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 from tqdm import tqdm
 
+from .._extras import progress_wanted
 from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
 from .effects import CATALOGUE, parse_effects
@@ -56,7 +57,7 @@ def diagnose(
     residual = features.force - model.predict(features)
     residuals = [residual]
     steps: list[Step] = []
-    with tqdm(desc="diagnose", unit=" fits", disable=not progress, leave=False) as bar:
+    with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
         current = cross_validate(effects, features, folds) if effects else None
         while True:
             candidates = [name for name in CATALOGUE if name not in effects]

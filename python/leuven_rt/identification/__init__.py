@@ -10,6 +10,11 @@ The data toolkit it works from (loading, derivatives, reversals, regression) is
 :mod:`leuven_rt.data`; its names are re-exported here as before.
 """
 
+from .._extras import require
+
+require("scipy", "tqdm", extra="analysis", needed_by="leuven_rt.identification")
+
+
 from ..data.records import MotionData, as_motion_data, load_columns
 from ..data.regression import LinearFit, fit_linear
 from ..data.signals import estimate_derivatives

@@ -22,6 +22,7 @@ from tqdm import tqdm
 
 from .._checks import real_number
 from .._core import MAX_ELEMENTS
+from .._extras import progress_wanted
 from .._typing import BoolArray
 from ..data.records import DataLike, as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
@@ -145,7 +146,8 @@ def identify(
 
     sigma1 = max(presliding.viscous - sliding.sigma2, 0.0)
     start = model_params({**sliding.params(), "n": 2.0, "sigma1": sigma1}, presliding.W, presliding.Delta)
-    with tqdm(desc="identify", unit=" simulations", delay=1.0, disable=not progress, leave=False) as bar:
+    shown = progress_wanted(progress)
+    with tqdm(desc="identify", unit=" simulations", delay=1.0, disable=not shown, leave=False) as bar:
         objective = SimulationError(derivatives.x, training.dt, training.f, np.ones(split, dtype=bool),
                                     lambda: bar.update(1))  # fmt: skip
         bar.set_postfix_str("sigma1, n")

@@ -10,6 +10,11 @@ nothing traded for speed, that the tests hold the Rust core to.
 Nothing in the public face imports these; ``leuven_rt.reference`` is loaded on first use.
 """
 
+from .._extras import require
+
+require("scipy", extra="analysis", needed_by="leuven_rt.reference")
+
+
 from . import mechanics, online, original_leuven
 from .leuven import (
     RTOL,

@@ -11,3 +11,7 @@ draws through :mod:`leuven_rt._plot`.
 
 Studies may import every room of the package but the command line.
 """
+
+from .._extras import require
+
+require("scipy", "tqdm", extra="analysis", needed_by="leuven_rt.studies")

@@ -13,6 +13,7 @@
  *
  *   loop <k> <x_feedforward> <force_feedforward> <x_observer> <force_observer>
  *   check <name> <status> <field> <index>
+ *   value <name> <number>
  *
  * Numbers are printed with %.17g, which round-trips doubles exactly.
  */
@@ -66,6 +67,16 @@ static leuven_rt_params swapped(void) {
 static void check(const char *name, leuven_rt_status status, const leuven_rt_error *error) {
     printf("check %s %d %s %zu\n", name, (int)status,
            error && error->field && error->field[0] ? error->field : "-", error ? error->index : 0);
+}
+
+/* The message is NUL-terminated within its array, "" on success and a sentence otherwise. */
+static void check_message(const char *name, leuven_rt_status status, const leuven_rt_error *error) {
+    const char *nul = memchr(error->message, 0, LEUVEN_RT_ERROR_MESSAGE_SIZE);
+    size_t length = nul ? (size_t)(nul - error->message) : LEUVEN_RT_ERROR_MESSAGE_SIZE;
+    if (length == LEUVEN_RT_ERROR_MESSAGE_SIZE || (status == LEUVEN_RT_OK) != (length == 0)) {
+        fprintf(stderr, "%s: bad error message (status %d, length %zu)\n", name, (int)status, length);
+        exit(2);
+    }
 }
 
 /* A plant state, its friction and its compensator. */
@@ -153,18 +164,28 @@ static int control_loops(void) {
 }
 
 /* Every bad argument the library can detect gets a status, never a crash. */
-static void bad_input(void) {
+static void bad_input(const char *folder) {
     leuven_rt_params p = nominal();
     leuven_rt_compensator *c = NULL;
     leuven_rt_error error;
     double force = -1.0;
 
+/* Calls with an error struct: it is filled with garbage first, so that a call that leaves it
+ * unwritten shows ("unwritten", 99); every status must write all of it. */
 #define EXPECT(name, call)                                 \
     do {                                                   \
-        memset(&error, 0, sizeof error);                   \
-        error.field = "";                                  \
+        memset(&error, 0x5a, sizeof error);                \
+        error.field = "unwritten";                         \
+        error.index = 99;                                  \
         leuven_rt_status status_ = (call);                 \
         check(name, status_, &error);                      \
+        check_message(name, status_, &error);              \
+    } while (0)
+/* Calls without one. */
+#define STATUS(name, call)                                 \
+    do {                                                   \
+        leuven_rt_status status_ = (call);                 \
+        check(name, status_, NULL);                        \
     } while (0)
 
     EXPECT("create_null_params", leuven_rt_compensator_create(NULL, DT, 0, &c, &error));
@@ -219,23 +240,23 @@ static void bad_input(void) {
     }
 
     /* Calls on a null handle. */
-    EXPECT("step_null_handle", leuven_rt_compensator_step(NULL, 0.0, &force));
+    STATUS("step_null_handle", leuven_rt_compensator_step(NULL, 0.0, &force));
     printf("value step_null_handle_force %.17g\n", force);
     EXPECT("set_params_null_handle", leuven_rt_compensator_set_params(NULL, &p, &error));
-    EXPECT("reset_null_handle", leuven_rt_compensator_reset(NULL));
-    EXPECT("output_null_handle", leuven_rt_compensator_output(NULL, &force));
+    STATUS("reset_null_handle", leuven_rt_compensator_reset(NULL));
+    STATUS("output_null_handle", leuven_rt_compensator_output(NULL, &force));
     leuven_rt_compensator_destroy(NULL);
 
     /* A live observer: bad samples and bad parameter sets leave it as it was. */
     EXPECT("create_ok", leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_OBSERVER, &c, &error));
     for (int k = 0; k < 10; ++k) leuven_rt_compensator_step(c, 1e-7 * k, &force);
     double before = force;
-    EXPECT("step_null_force", leuven_rt_compensator_step(c, 1e-6, NULL));
-    EXPECT("step_inf", leuven_rt_compensator_step(c, INFINITY, &force));
-    EXPECT("step_nan", leuven_rt_compensator_step(c, NAN, &force));
+    STATUS("step_null_force", leuven_rt_compensator_step(c, 1e-6, NULL));
+    STATUS("step_inf", leuven_rt_compensator_step(c, INFINITY, &force));
+    STATUS("step_nan", leuven_rt_compensator_step(c, NAN, &force));
     printf("value held_force_equal %d\n", force == before);
     /* A finite position whose jump over dt overflows the velocity. */
-    EXPECT("step_huge_jump", leuven_rt_compensator_step(c, 1e306, &force));
+    STATUS("step_huge_jump", leuven_rt_compensator_step(c, 1e306, &force));
     bad = p;
     bad.Fc = -1.0;
     EXPECT("set_params_fc_negative", leuven_rt_compensator_set_params(c, &bad, &error));
@@ -256,11 +277,77 @@ static void bad_input(void) {
     printf("value untouched_after_rejections %d\n", force == twin_force);
     leuven_rt_compensator_destroy(twin);
     leuven_rt_compensator_destroy(c);
+
+    /* Parameter files: the JSON that leuven-rt identify writes. */
+    static const char GOOD[] =
+        "{\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0, \"sigma1\": 30.0,\n"
+        " \"sigma2\": 0.4, \"W\": [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],\n"
+        " \"Delta\": [1e-06, 2e-06, 3e-06, 4e-06, 5e-06, 6e-06, 7e-06, 8e-06, 9e-06, 1e-05]}\n";
+    c = NULL;
+    EXPECT("json_ok", leuven_rt_compensator_create_from_json(GOOD, strlen(GOOD), DT,
+                                                              LEUVEN_RT_MODE_OBSERVER, &c, &error));
+    twin = NULL;
+    leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_OBSERVER, &twin, NULL);
+    int same = c != NULL && twin != NULL;
+    for (int k = 0; same && k < 50; ++k) {
+        leuven_rt_compensator_step(c, 1e-7 * k, &force);
+        leuven_rt_compensator_step(twin, 1e-7 * k, &twin_force);
+        same = force == twin_force;
+    }
+    printf("value json_equals_struct %d\n", same);
+    leuven_rt_compensator_destroy(c);
+    c = NULL;
+    static const char UNKNOWN[] =
+        "{\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 1.0, \"sigma0\": 1e5,"
+        " \"Fq\": 2.0}";
+    EXPECT("json_unknown_key",
+           leuven_rt_compensator_create_from_json(UNKNOWN, strlen(UNKNOWN), DT, 0, &c, &error));
+    printf("value json_unknown_key_named %d\n", strstr(error.message, "Fq") != NULL);
+    static const char MISSING[] = "{\"Fc\": 1.0, \"Fs\": 1.5, \"delta\": 2.0, \"n\": 1.0, \"sigma0\": 1e5}";
+    EXPECT("json_missing_key",
+           leuven_rt_compensator_create_from_json(MISSING, strlen(MISSING), DT, 0, &c, &error));
+    printf("value json_missing_key_named %d\n", strstr(error.message, "Vs") != NULL);
+    static const char BELOW[] = "{\"Fc\": 1.0, \"Fs\": 0.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 1.0, \"sigma0\": 1e5}";
+    EXPECT("json_fs_below_fc",
+           leuven_rt_compensator_create_from_json(BELOW, strlen(BELOW), DT, 0, &c, &error));
+    static const char WEAK[] =
+        "{\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0,"
+        " \"W\": [0.5, 0.5], \"Delta\": [1e-6, 2e-6]}";
+    EXPECT("json_elements_too_weak",
+           leuven_rt_compensator_create_from_json(WEAK, strlen(WEAK), DT, 0, &c, &error));
+    static const char HALF[] =
+        "{\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0, \"W\": [1.0, 1.0]}";
+    EXPECT("json_w_without_delta",
+           leuven_rt_compensator_create_from_json(HALF, strlen(HALF), DT, 0, &c, &error));
+    EXPECT("json_not_json", leuven_rt_compensator_create_from_json("[1, 2", 5, DT, 0, &c, &error));
+    EXPECT("json_null", leuven_rt_compensator_create_from_json(NULL, 0, DT, 0, &c, &error));
+    EXPECT("json_bad_mode",
+           leuven_rt_compensator_create_from_json(GOOD, strlen(GOOD), DT, 9, &c, &error));
+
+    char path[4096];
+    snprintf(path, sizeof path, "%s/leuven_rt_params.json", folder);
+    FILE *file = fopen(path, "w");
+    if (file == NULL || fputs(GOOD, file) < 0 || fclose(file) != 0) {
+        fprintf(stderr, "cannot write %s\n", path);
+        exit(2);
+    }
+    EXPECT("file_ok", leuven_rt_compensator_create_from_file(path, DT, 0, &c, &error));
+    leuven_rt_compensator_destroy(c);
+    c = NULL;
+    snprintf(path, sizeof path, "%s/no_such_params.json", folder);
+    EXPECT("file_missing", leuven_rt_compensator_create_from_file(path, DT, 0, &c, &error));
+    printf("value file_missing_named %d\n", strstr(error.message, "no_such_params.json") != NULL);
+    EXPECT("file_null", leuven_rt_compensator_create_from_file(NULL, DT, 0, &c, &error));
+    if (c != NULL) {
+        fprintf(stderr, "a failed create must leave *out as it was\n");
+        exit(2);
+    }
 }
 
-int main(void) {
+/* argv[1]: a folder to write a parameter file in (default: the current one). */
+int main(int argc, char **argv) {
     int status = control_loops();
     if (status != 0) return status;
-    bad_input();
+    bad_input(argc > 1 ? argv[1] : ".");
     return 0;
 }
