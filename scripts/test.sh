@@ -36,3 +36,5 @@ step "C package: cargo cinstall, find_package and pkg-config against the install
 bash scripts/c_package.sh
 step "cargo package -p gms-core (the crate as crates.io would get it)"
 cargo package --quiet -p gms-core --allow-dirty
+step "libFuzzer on the C ABI under AddressSanitizer and UndefinedBehaviorSanitizer, 60 s (scripts/fuzz_c.sh)"
+bash scripts/fuzz_c.sh 60

@@ -17,6 +17,7 @@ __all__ = [
     "MassEngine",
     "OnlineIdentifier",
     "ParameterError",
+    "__version__",
     "check_params",
     "slip_responses",
 ]
