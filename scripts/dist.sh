@@ -10,15 +10,17 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
     "auditwheel>=6"
 # maturin finds zig through the ziglang package of the Python it runs with.
 export PATH="$PWD/.venv/bin:$PATH"
-rm -rf dist
+# Only this package's earlier builds are replaced; anything else in dist/ is left alone.
+mkdir -p dist
+rm -f dist/leuven_rt-*.whl dist/leuven_rt-*.tar.gz
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
 build() { "$@" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }; }
 build .venv/bin/maturin build --release --quiet --zig --compatibility manylinux2014 --out dist
 build .venv/bin/maturin sdist --out dist
 # auditwheel's verdict: the wheel is consistent with manylinux_2_17 (glibc 2.17) and no newer.
-build .venv/bin/auditwheel show dist/*.whl
+build .venv/bin/auditwheel show dist/leuven_rt-*.whl
 grep -q '"manylinux_2_17_x86_64"' "$log" || { cat "$log" >&2; exit 1; }
-for file in dist/*; do
+for file in dist/leuven_rt-*; do
     printf '%s  %s bytes\n' "$file" "$(stat -c %s "$file")"
 done

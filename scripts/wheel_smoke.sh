@@ -16,10 +16,10 @@ measure=0
 [ "${1:-}" = "--measure" ] && measure=1
 
 shopt -s nullglob
-wheels=(dist/*.whl)
+wheels=(dist/leuven_rt-*.whl)
 if [ ${#wheels[@]} -eq 0 ]; then
     bash scripts/dist.sh >/dev/null
-    wheels=(dist/*.whl)
+    wheels=(dist/leuven_rt-*.whl)
 fi
 [ ${#wheels[@]} -eq 1 ] || { echo "wheel_smoke.sh: expected one wheel in dist/, found ${#wheels[@]}" >&2; exit 1; }
 wheel="$root/${wheels[0]}"
@@ -42,6 +42,7 @@ if sys.implementation.name == "cpython" and sys.version_info >= (3, 10):
     seen[$real]=1
     pythons+=("$real")
 done
+[ ${#pythons[@]} -gt 0 ] || { echo "wheel_smoke.sh: no CPython >= 3.10 with venv on this machine" >&2; exit 1; }
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

@@ -137,9 +137,11 @@ def _temporary(path: Path) -> Path:
 
 
 def write_files(files: Sequence[tuple[str | PathLike[str], Writer]]) -> list[Path]:
-    """Writes every ``(path, writer)`` atomically and all together: each writer fills a
-    temporary file in the target's folder (made if needed), and only when all have succeeded
-    are they renamed onto the targets. A failure removes the temporary files and raises
+    """Writes every ``(path, writer)`` atomically: each writer fills a temporary file in the
+    target's folder (made if needed), and only when all have succeeded are they renamed onto the
+    targets, so a failing writer leaves no target touched. Each rename is atomic; the renames
+    together are not: should one fail after another succeeded (a permission changed in between),
+    the earlier target is already replaced. A failure removes the temporary files and raises
     :class:`OutputError` naming the path (or re-raises the writer's own error)."""
     done: list[tuple[Path, Path]] = []
     try:

@@ -35,6 +35,15 @@ def test_elements_narrower_than_the_rounding_of_z_are_refused(narrow: float) -> 
         leuven_rt.reference.simulate(maxwell(Delta=delta), np.zeros(3), DT)
 
 
+def test_the_narrowness_rule_does_not_depend_on_the_order_of_many_elements() -> None:
+    """Element responses run in groups of 32; the rule judges each element against the widest of
+    the whole bank, so a narrow element after 32 wide ones is refused like one beside them."""
+    x = np.linspace(0.0, 1e-3, 50)
+    for delta in ([1.0, 1e-9], [1.0] * 32 + [1e-9]):
+        with pytest.raises(InputError, match=r"`Delta\[\d+\]` must be >= 2\^-26"):
+            leuven_rt._core.slip_responses(x, np.array(delta))
+
+
 def test_wide_spreads_of_delta_are_accepted() -> None:
     Params(**maxwell(Delta=[1.6e-5 * 2.0**-26, 4e-6, 8e-6, 1.6e-5]))
 

@@ -30,6 +30,24 @@ pub fn slip_responses(x: &[f64], delta: &[f64], out: &mut [f64]) -> Result<(), E
         }
         .into());
     }
+    // The narrowness rule judges each element against the widest of the whole bank, not of its
+    // group, so that the answer does not depend on the order of the elements.
+    let widest = delta
+        .iter()
+        .copied()
+        .filter(|value| value.is_finite())
+        .fold(0.0_f64, f64::max);
+    if let Some((index, &value)) = delta
+        .iter()
+        .enumerate()
+        .find(|(_, &value)| value > 0.0 && value < gms_core::MIN_DELTA_RATIO * widest)
+    {
+        return Err(Error::Core(gms_core::Error::DeltaTooNarrow {
+            index,
+            value,
+            widest,
+        }));
+    }
     let mut responses = Vec::new();
     for (first, chunk) in (0..).step_by(MAX_ELEMENTS).zip(delta.chunks(MAX_ELEMENTS)) {
         responses.resize(x.len() * chunk.len(), 0.0);

@@ -85,9 +85,12 @@ typedef struct leuven_rt_compensator leuven_rt_compensator;
 // `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
 // `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
 // `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
-// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`); and
-// `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the Stribeck curve
-// (breaking it reports field `W`, index 0).
+// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`);
+// `sum(W)` finite (field `W`, the index of the largest); the sum of the stiffnesses
+// `W[i] / Delta[i]` finite (field `Delta`, index 0); each `Delta[i]` at least 2^-26 times the
+// largest `Delta`, since narrower windows are lost in the rounding of z (field `Delta`, that
+// index); and `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the
+// Stribeck curve (breaking it reports field `W`, index 0).
 //
 // Ownership: the library copies what it needs while `create` or `set_params` runs; `W` and
 // `Delta` may be freed or changed once the call has returned.

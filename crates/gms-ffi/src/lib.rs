@@ -108,9 +108,12 @@ use leuven_rt_status::{
 /// `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
 /// `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
 /// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
-/// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`); and
-/// `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the Stribeck curve
-/// (breaking it reports field `W`, index 0).
+/// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`);
+/// `sum(W)` finite (field `W`, the index of the largest); the sum of the stiffnesses
+/// `W[i] / Delta[i]` finite (field `Delta`, index 0); each `Delta[i]` at least 2^-26 times the
+/// largest `Delta`, since narrower windows are lost in the rounding of z (field `Delta`, that
+/// index); and `sum(W) > max(Fs, Fs_neg)`, since the elements must be able to balance the
+/// Stribeck curve (breaking it reports field `W`, index 0).
 ///
 /// Ownership: the library copies what it needs while `create` or `set_params` runs; `W` and
 /// `Delta` may be freed or changed once the call has returned.
@@ -208,10 +211,10 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
 ) -> leuven_rt_status {
     // SAFETY: the caller passes null or valid pointers (the function's contract).
     let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
         let mode = checked_mode(mode)?;
         // SAFETY: as above, for `params` and the arrays it points to.
-        let raw = unsafe { raw_params(params) }.ok_or(Refusal::pointer("params"))?;
+        let raw = unsafe { raw_params(params) }.ok_or_else(|| Refusal::pointer("params"))?;
         build(&raw, dt, mode, out)
     });
     finish(created, error)
@@ -241,7 +244,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
 ) -> leuven_rt_status {
     // SAFETY: the caller passes null or valid pointers (the function's contract).
     let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
         let mode = checked_mode(mode)?;
         if json.is_null() || len > isize::MAX as usize {
             return Err(Refusal::pointer("json"));
@@ -271,7 +274,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
 ) -> leuven_rt_status {
     // SAFETY: the caller passes null or valid pointers (the function's contract).
     let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or(Refusal::pointer("out")).and_then(|out| {
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
         let mode = checked_mode(mode)?;
         if path.is_null() {
             return Err(Refusal::pointer("path"));
@@ -286,14 +289,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
                 format_args!("the path is not UTF-8"),
             )
         })?);
-        let text = std::fs::read(path).map_err(|reason| {
-            Refusal::new(
-                LEUVEN_RT_INVALID_FILE,
-                c"",
-                0,
-                format_args!("cannot read {}: {reason}", path.display()),
-            )
-        })?;
+        let text = read_parameter_file(path)?;
         from_json_text(&text, dt, mode, out)
     });
     finish(created, error)
@@ -370,10 +366,10 @@ pub unsafe extern "C" fn leuven_rt_compensator_set_params(
     // SAFETY: the caller passes null or valid pointers (the function's contract).
     let (compensator, error) = unsafe { (checked_mut(compensator), checked_mut(error)) };
     let swapped = compensator
-        .ok_or(Refusal::pointer("compensator"))
+        .ok_or_else(|| Refusal::pointer("compensator"))
         .and_then(|compensator| {
             // SAFETY: as above, for `params` and the arrays it points to.
-            let raw = unsafe { raw_params(params) }.ok_or(Refusal::pointer("params"))?;
+            let raw = unsafe { raw_params(params) }.ok_or_else(|| Refusal::pointer("params"))?;
             compensator
                 .compensator
                 .set_raw_params(&raw)
@@ -689,6 +685,39 @@ struct ParamsFile {
     Fc_neg: Option<f64>,
     Fs_neg: Option<f64>,
     sigma0: Option<f64>,
+}
+
+/// The largest parameter file read: far above any real one (32 elements), and small enough that
+/// a path to a device or a huge file cannot exhaust memory.
+const MAX_PARAMETER_FILE_BYTES: u64 = 1 << 20;
+
+/// Reads a parameter file: a regular file of at most [`MAX_PARAMETER_FILE_BYTES`] (a FIFO or a
+/// device would block or never end).
+fn read_parameter_file(path: &std::path::Path) -> Result<Vec<u8>, Refusal> {
+    use std::io::Read;
+    let refuse = |reason: &dyn fmt::Display| {
+        Refusal::new(
+            LEUVEN_RT_INVALID_FILE,
+            c"",
+            0,
+            format_args!("cannot read {}: {reason}", path.display()),
+        )
+    };
+    let file = std::fs::File::open(path).map_err(|reason| refuse(&reason))?;
+    let metadata = file.metadata().map_err(|reason| refuse(&reason))?;
+    if !metadata.is_file() {
+        return Err(refuse(&"not a regular file"));
+    }
+    let mut text = Vec::new();
+    file.take(MAX_PARAMETER_FILE_BYTES + 1)
+        .read_to_end(&mut text)
+        .map_err(|reason| refuse(&reason))?;
+    if text.len() as u64 > MAX_PARAMETER_FILE_BYTES {
+        return Err(refuse(&format_args!(
+            "larger than {MAX_PARAMETER_FILE_BYTES} bytes"
+        )));
+    }
+    Ok(text)
 }
 
 /// Parses the text of a parameter file and builds the compensator from it.

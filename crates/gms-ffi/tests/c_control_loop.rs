@@ -246,6 +246,8 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("file_ok", OK, "-", 0),
     ("file_missing", INVALID_FILE, "-", 0),
     ("file_null", INVALID_POINTER, "-", 0),
+    ("file_folder", INVALID_FILE, "-", 0),
+    ("file_device", INVALID_FILE, "-", 0),
 ];
 
 #[test]

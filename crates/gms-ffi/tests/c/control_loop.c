@@ -338,6 +338,9 @@ static void bad_input(const char *folder) {
     EXPECT("file_missing", leuven_rt_compensator_create_from_file(path, DT, 0, &c, &error));
     printf("value file_missing_named %d\n", strstr(error.message, "no_such_params.json") != NULL);
     EXPECT("file_null", leuven_rt_compensator_create_from_file(NULL, DT, 0, &c, &error));
+    /* Not a regular file: a folder, and a device that never ends (it must not be read whole). */
+    EXPECT("file_folder", leuven_rt_compensator_create_from_file(folder, DT, 0, &c, &error));
+    EXPECT("file_device", leuven_rt_compensator_create_from_file("/dev/zero", DT, 0, &c, &error));
     if (c != NULL) {
         fprintf(stderr, "a failed create must leave *out as it was\n");
         exit(2);
