@@ -102,35 +102,24 @@ where
             Input::Velocity => params.simulate(state, input, dt, scheme, out),
             Input::Position => params.simulate_position(state, input, dt, scheme, out),
         };
+        // Only the first failing channel is kept: a result per channel would be one more
+        // allocation the size of the bank, and an infallible one.
         all_or_nothing(&mut self.states, |states| {
-            if states.len() == 1 {
-                // One channel needs no thread pool.
-                let (mut input, mut out) = (input, out);
-                return states.iter_mut().enumerate().find_map(|(channel, state)| {
-                    let (row, rest) = input.split_at(samples);
-                    let (row_out, rest_out) = core::mem::take(&mut out).split_at_mut(samples);
-                    (input, out) = (rest, rest_out);
-                    run_one(state, row, row_out)
-                        .err()
-                        .map(|error| (channel, error))
-                });
-            }
-            // Only the first failing channel is kept: a result per channel would be one more
-            // allocation the size of the bank, and an infallible one. Channels run on rayon's pool
-            // with the `parallel` feature, one after the other without.
             #[cfg(feature = "parallel")]
-            let first_failure = states
-                .par_iter_mut()
-                .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
-                .enumerate()
-                .filter_map(|(channel, (state, (input, out)))| {
-                    run_one(state, input, out)
-                        .err()
-                        .map(|error| (channel, error))
-                })
-                .min_by_key(|(channel, _)| *channel);
-            #[cfg(not(feature = "parallel"))]
-            let first_failure = states
+            if states.len() > 1 {
+                return states
+                    .par_iter_mut()
+                    .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
+                    .enumerate()
+                    .filter_map(|(channel, (state, (input, out)))| {
+                        run_one(state, input, out)
+                            .err()
+                            .map(|error| (channel, error))
+                    })
+                    .min_by_key(|(channel, _)| *channel);
+            }
+            // One channel needs no thread pool; without the `parallel` feature none is used.
+            states
                 .iter_mut()
                 .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
                 .enumerate()
@@ -138,8 +127,7 @@ where
                     run_one(state, input, out)
                         .err()
                         .map(|error| (channel, error))
-                });
-            first_failure
+                })
         })
     }
 

@@ -115,38 +115,25 @@ where
                        v: &mut [f64]| {
             system.simulate(state, u, dt, scheme, Trajectory { friction, x, v })
         };
+        // Only the first failing channel is kept (see the friction bank).
         all_or_nothing(&mut self.states, |states| {
-            if states.len() == 1 {
-                // One channel needs no thread pool.
-                return states.iter_mut().enumerate().find_map(|(channel, state)| {
-                    let rows = samples.min(u.len());
-                    run_one(
-                        state,
-                        &u[..rows],
-                        &mut friction[..rows],
-                        &mut x[..rows],
-                        &mut v[..rows],
-                    )
-                    .err()
-                    .map(|error| (channel, error))
-                });
-            }
-            // Only the first failing channel is kept (see the friction bank).
             #[cfg(feature = "parallel")]
-            let first_failure = states
-                .par_iter_mut()
-                .zip(u.par_chunks(samples))
-                .zip(friction.par_chunks_mut(samples))
-                .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
-                .enumerate()
-                .filter_map(|(channel, (((state, u), friction), (x, v)))| {
-                    run_one(state, u, friction, x, v)
-                        .err()
-                        .map(|error| (channel, error))
-                })
-                .min_by_key(|(channel, _)| *channel);
-            #[cfg(not(feature = "parallel"))]
-            let first_failure = states
+            if states.len() > 1 {
+                return states
+                    .par_iter_mut()
+                    .zip(u.par_chunks(samples))
+                    .zip(friction.par_chunks_mut(samples))
+                    .zip(x.par_chunks_mut(samples).zip(v.par_chunks_mut(samples)))
+                    .enumerate()
+                    .filter_map(|(channel, (((state, u), friction), (x, v)))| {
+                        run_one(state, u, friction, x, v)
+                            .err()
+                            .map(|error| (channel, error))
+                    })
+                    .min_by_key(|(channel, _)| *channel);
+            }
+            // One channel needs no thread pool; without the `parallel` feature none is used.
+            states
                 .iter_mut()
                 .zip(u.chunks(samples))
                 .zip(friction.chunks_mut(samples))
@@ -156,8 +143,7 @@ where
                     run_one(state, u, friction, x, v)
                         .err()
                         .map(|error| (channel, error))
-                });
-            first_failure
+                })
         })
     }
 
