@@ -18,6 +18,8 @@ from .._typing import FloatArray
 from ..errors import InputError
 from .features import ELEMENTS, Features
 
+#: Samples at rest the Coulomb effect needs to fit the force at rest apart.
+MIN_REST = 20
 #: Degree of the Legendre polynomials in position that scale the friction level along the stroke.
 POSITION_DEGREE = 2
 
@@ -40,6 +42,15 @@ class Effect:
     """What is missing from a model without it (docs/effects.md#the-effects)."""
     columns: Columns
     nonnegative: tuple[str, ...] = ()
+
+
+def _coulomb(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
+    # At rest the force is whatever holds the axis: a share of the level in the direction of the
+    # last motion, from none (the force released) to all of it (the friction holds its value).
+    out = {"Fc": f.sign}
+    if np.count_nonzero(f.rest[f.usable]) >= MIN_REST:
+        out["Fc_rest"] = f.rest
+    return out
 
 
 def _asymmetry(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
@@ -71,7 +82,7 @@ def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[
 CATALOGUE: dict[str, Effect] = {
     effect.name: effect
     for effect in (
-        Effect("coulomb", "a constant friction level Fc·sgn(v)", lambda f, m, s: {"Fc": f.sign}),
+        Effect("coulomb", "a constant friction level Fc·sgn(v)", _coulomb),
         Effect("viscous", "sigma2·v", lambda f, m, s: {"sigma2": f.v}),
         Effect("stribeck", "Fs > Fc, Vs, δ", _stribeck),
         Effect("asymmetry", "levels differ between v > 0 and v < 0", _asymmetry),
