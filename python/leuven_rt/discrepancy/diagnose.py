@@ -10,86 +10,171 @@ what remains unexplained and where.
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
 from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import NoReturn
 
 import numpy as np
+from numpy.typing import NDArray
 from tqdm import tqdm
 
 from .._extras import progress_wanted
 from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
-from .effects import CATALOGUE, parse_effects
-from .features import compute_features
+from .._typing import FloatArray
+from ..errors import InputError
+from .effects import CATALOGUE, DRIFT, parse_effects
+from .features import Features, compute_features
 from .localise import regions, where_improved, where_unexplained
 from .model import ModelFit, fit_model
 from .report import Diagnosis, Step
-from .scoring import blocks, choose, cross_validate, zero_score
+from .ripple import find_periods
+from .scoring import Score, blocks, choose, cross_validate, significant, zero_score
+from .settings import Settings
 
 #: The baseline model when none is given.
 DEFAULT_BASELINE = ("coulomb", "viscous")
-#: What remains is significant when its mean square exceeds the noise variance by this share.
-UNEXPLAINED = 0.2
+#: Effects tried in pairs when none counts alone: the best this many single additions.
+PAIRED = 4
+
+
+@dataclass
+class _Selection:
+    """The state of the rounds: the model so far, and what each step did."""
+
+    effects: tuple[str, ...]
+    features: Features
+    model: ModelFit
+    residual: FloatArray
+    residuals: list[FloatArray]
+    steps: list[Step]
 
 
 def diagnose(
-    data: DataLike, baseline: str | Sequence[str] = DEFAULT_BASELINE, *, progress: bool = False
+    data: DataLike,
+    baseline: str | Sequence[str] = DEFAULT_BASELINE,
+    *,
+    settings: Settings | None = None,
+    progress: bool = False,
 ) -> Diagnosis:
     """Names the catalogue effects (docs/effects.md) that ``baseline`` misses in ``data``.
 
     ``data``: a :class:`~leuven_rt.MotionData`, a ``.csv`` (t, x, f[, v]) or EMPS ``.mat`` path,
     or a mapping of columns. ``baseline``: effect names, as a list or comma-separated.
-    ``progress``: a tqdm progress bar on stderr. Bad input raises :class:`InputError`.
+    ``settings``: the thresholds (:class:`~leuven_rt.discrepancy.Settings`; the defaults when
+    None). ``progress``: a tqdm progress bar on stderr. Bad input raises :class:`InputError`.
     """
     effects = parse_effects(baseline)
+    if settings is None:
+        settings = Settings()
+    elif not isinstance(settings, Settings):
+        raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
     record = as_motion_data(data)
     features = compute_features(record)
-    folds = blocks(features)
+    folds = blocks(features, settings.folds)
     noise = noise_floor(record.f)
     usable = features.usable
 
-    def fitted(effect_set: tuple[str, ...]) -> ModelFit:
-        return fit_model(effect_set, features, usable)
+    with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
+        run = _select(effects, features, folds, noise, settings, bar)
+        # A level that changes over the record makes effects look useful that are not there: when
+        # the final model still gains from a level drifting in time, the rounds are run again
+        # with the drift fitted alongside, and the drift is reported as unexplained.
+        drift = significant(
+            cross_validate(run.effects, run.features, folds),
+            cross_validate((*run.effects, DRIFT.name), run.features, folds),
+            noise,
+            settings,
+        )
+        if drift:
+            run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar)
 
-    def rms(residual: np.ndarray) -> float:
+    def rms(residual: FloatArray) -> float:
         return float(np.sqrt(np.mean(residual[usable] ** 2)))
 
-    model = fitted(effects)
-    residual = features.force - model.predict(features)
-    residuals = [residual]
-    steps: list[Step] = []
-    with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
-        current = cross_validate(effects, features, folds) if effects else None
-        while True:
-            candidates = [name for name in CATALOGUE if name not in effects]
-            if not candidates:
-                break
-            bar.total = (bar.total or 0) + len(candidates)
-            bar.refresh()
-            scores = []
-            for name in candidates:
-                bar.set_postfix_str(name)
-                scores.append(cross_validate((*effects, name), features, folds))
-                bar.update(1)
-            if current is None:  # an empty baseline is scored against predicting zero
-                current = zero_score(features, folds)
-            best = choose(current, scores, noise)
-            if best is None:
-                break
-            added = best.effects[-1]
-            effects = best.effects
-            model = fitted(effects)
-            after = features.force - model.predict(features)
-            steps.append(Step(added, where_improved(features, residual, after), rms(residual), rms(after),
-                              model.params(added)))  # fmt: skip
-            residual, current = after, best
-            residuals.append(residual)
-    final = model
+    residual = run.residual
     excess = float(np.mean(residual[usable] ** 2)) - noise**2
+    where = where_unexplained(run.features, residual, noise)
+    if drift:
+        where = f"{DRIFT.missing} (a drift, outside the catalogue); {where}"
     return Diagnosis(
-        samples=record.samples, noise_std=noise, baseline=parse_effects(baseline),
-        rms_before=rms(residuals[0]), rms_after=rms(residual), steps=steps,
-        unexplained_significant=bool(excess > UNEXPLAINED * noise**2),
-        unexplained_where=where_unexplained(features, residual, noise),
-        final_model=final, regions_before=regions(features, residuals[0]),
-        regions_after=regions(features, residual), features=features, residuals=residuals,
+        samples=record.samples, noise_std=noise, baseline=effects,
+        rms_before=rms(run.residuals[0]), rms_after=rms(residual), steps=run.steps,
+        unexplained_significant=bool(drift or excess > settings.unexplained * noise**2),
+        unexplained_where=where, drift=drift, settings=settings,
+        final_model=run.model, regions_before=regions(run.features, run.residuals[0]),
+        regions_after=regions(run.features, residual), features=run.features, residuals=run.residuals,
     )  # fmt: skip
+
+
+def _select(
+    effects: tuple[str, ...],
+    features: Features,
+    folds: list[NDArray[np.bool_]],
+    noise: float,
+    settings: Settings,
+    bar: tqdm[NoReturn],
+) -> _Selection:
+    """The rounds from ``effects``: add the best significant effect (or pair) until none is."""
+    usable = features.usable
+    model = fit_model(effects, features, usable)
+    residual = features.force - model.predict(features)
+    run = _Selection(effects, features, model, residual, [residual], [])
+    current = cross_validate(effects, features, folds) if effects else zero_score(features, folds)
+    while True:
+        candidates = [name for name in CATALOGUE if name not in run.effects]
+        if not candidates:
+            break
+        if "position_dependence" not in run.effects:  # the ripple's periods, in what is left now
+            periods = find_periods(run.features.sign, run.features.x, run.residual, usable)
+            run.features = dataclasses.replace(
+                run.features, scales=dataclasses.replace(run.features.scales, periods=periods)
+            )
+        scores = _score(run.effects, [(name,) for name in candidates], run.features, folds, bar)
+        best = choose(current, scores, noise, settings)
+        if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
+            # No effect helps alone, yet the model is far from the data: some effects only help
+            # together (the Stribeck curve and presliding hysteresis each fit the other's part).
+            # Among the effects that gain on their own, if not enough: the PAIRED best of them.
+            ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
+            gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
+            pairs = list(itertools.combinations(gaining, 2))
+            best = choose(current, _score(run.effects, pairs, run.features, folds, bar), noise, settings)
+        if best is None:
+            break
+        added = best.effects[len(run.effects) :]
+        for name in added:  # a pair is added one effect at a time, each step with its numbers
+            effects_now = (*run.effects, name)
+            model = fit_model(effects_now, run.features, usable)
+            after = run.features.force - model.predict(run.features)
+            run.steps.append(
+                Step(name, where_improved(run.features, run.residual, after), _rms(run.residual, usable),
+                     _rms(after, usable), model.params(name))  # fmt: skip
+            )
+            run.effects, run.model, run.residual = effects_now, model, after
+            run.residuals.append(after)
+        current = best
+    return run
+
+
+def _score(
+    effects: tuple[str, ...],
+    additions: list[tuple[str, ...]],
+    features: Features,
+    folds: list[NDArray[np.bool_]],
+    bar: tqdm[NoReturn],
+) -> list[Score]:
+    bar.total = (bar.total or 0) + len(additions)
+    bar.refresh()
+    scores = []
+    for addition in additions:
+        bar.set_postfix_str("+".join(addition))
+        scores.append(cross_validate((*effects, *addition), features, folds))
+        bar.update(1)
+    return scores
+
+
+def _rms(residual: FloatArray, usable: NDArray[np.bool_]) -> float:
+    return float(np.sqrt(np.mean(residual[usable] ** 2)))

@@ -17,6 +17,7 @@ from numpy.polynomial import legendre
 from .._typing import FloatArray
 from ..errors import InputError
 from .features import ELEMENTS, Features
+from .ripple import ripple_columns
 
 #: Samples at rest the Coulomb effect needs to fit the force at rest apart.
 MIN_REST = 20
@@ -75,7 +76,12 @@ def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[
     for degree in range(1, POSITION_DEGREE + 1):
         coefficients = np.zeros(degree + 1)
         coefficients[degree] = 1.0
-        out[f"Fc_P{degree}"] = f.sign * legendre.legval(f.position, coefficients)
+        out[f"Fc_P{degree}"] = f.sign * legendre.legval(np.clip(f.position, -1.0, 1.0), coefficients)
+    for number, period in enumerate(f.scales.periods, 1):
+        columns = ripple_columns(f.sign, f.x, period)
+        for k in range(len(columns) // 2):
+            out[f"Fc_R{number}_cos{k + 1}"] = columns[2 * k]
+            out[f"Fc_R{number}_sin{k + 1}"] = columns[2 * k + 1]
     return out
 
 
@@ -84,7 +90,7 @@ CATALOGUE: dict[str, Effect] = {
     for effect in (
         Effect("coulomb", "a constant friction level Fc·sgn(v)", _coulomb),
         Effect("viscous", "sigma2·v", lambda f, m, s: {"sigma2": f.v}),
-        Effect("stribeck", "Fs > Fc, Vs, δ", _stribeck),
+        Effect("stribeck", "Fs > Fc, Vs, δ", _stribeck, nonnegative=("Fs_minus_Fc",)),
         Effect("asymmetry", "levels differ between v > 0 and v < 0", _asymmetry),
         Effect(
             "presliding_hysteresis",
@@ -101,6 +107,20 @@ CATALOGUE: dict[str, Effect] = {
         Effect("inertia", "the force includes m·ẍ", lambda f, m, s: {"M": f.a}),
     )
 }
+
+
+def _drift(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
+    time = 2.0 * (f.t - f.t[0]) / max(float(f.t[-1] - f.t[0]), f.dt) - 1.0
+    # linear in time: a held-out block at either end of the record extrapolates it
+    return {"Fc_T1": f.sign * time}
+
+
+#: Outside the catalogue: a friction level that changes over the record (wear, temperature). It is
+#: never named; when it is in the data, it is fitted alongside so that no effect is named for it,
+#: and reported as what remains unexplained.
+DRIFT = Effect("drift", "the friction level changes over the record", _drift)
+#: Every term a model can hold: the catalogue and the drift.
+TERMS: dict[str, Effect] = {**CATALOGUE, DRIFT.name: DRIFT}
 
 
 def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tuple[str, ...]:

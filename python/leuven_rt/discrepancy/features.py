@@ -61,6 +61,8 @@ class Scales:
     """Half-width of the play that reads the direction of motion [m]."""
     middle: float
     half_stroke: float
+    periods: tuple[float, ...] = ()
+    """Periods of the position-dependent level's ripple [m] (:mod:`.ripple`), once found."""
 
 
 @dataclass(frozen=True, eq=False)

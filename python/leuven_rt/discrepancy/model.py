@@ -21,7 +21,7 @@ from scipy.optimize import minimize
 from .._typing import FloatArray
 from ..data.regression import fit_linear
 from .drive import EXPONENTS, Drive
-from .effects import CATALOGUE, Shape
+from .effects import TERMS, Shape
 from .features import Features
 
 Rows = NDArray[np.bool_]
@@ -41,6 +41,8 @@ class ModelFit:
     """The coefficient names of every effect."""
     shape: Shape | None
     drive: Drive | None = None
+    periods: tuple[float, ...] = ()
+    """The ripple periods the position columns were built with."""
 
     def predict(self, features: Features) -> FloatArray:
         return self.predict_columns(self.drive.apply(features) if self.drive is not None else features)
@@ -60,6 +62,8 @@ class ModelFit:
             out.update(Vs=self.shape.Vs, delta=self.shape.delta)
         if effect == PRESLIDING and self.drive is not None:
             out.update(n=self.drive.n)
+        if effect == "position_dependence":
+            out.update({f"period{number}": period for number, period in enumerate(self.periods, 1)})
         return out
 
     def to_dict(self) -> dict[str, object]:
@@ -75,7 +79,7 @@ class ModelFit:
 def design(effects: Sequence[str], features: Features, shape: Shape | None) -> dict[str, FloatArray]:
     columns: dict[str, FloatArray] = {}
     for name in effects:
-        columns.update(CATALOGUE[name].columns(features, effects, shape))
+        columns.update(TERMS[name].columns(features, effects, shape))
     return columns
 
 
@@ -95,15 +99,15 @@ def _fit_linear_part(
 ) -> ModelFit:
     shape = _fit_shape(effects, features, rows) if "stribeck" in effects else None
     groups = {
-        name: tuple(CATALOGUE[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects
+        name: tuple(TERMS[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects
     }
     if not effects:
-        return ModelFit(effects, {}, groups, shape, drive)
+        return ModelFit(effects, {}, groups, shape, drive, features.scales.periods)
     columns = design(effects, features, shape)
-    nonnegative = [column for name in effects for column in CATALOGUE[name].nonnegative]
+    nonnegative = [column for name in effects for column in TERMS[name].nonnegative]
     fit = fit_linear({key: value[rows] for key, value in columns.items()}, features.force[rows],
                      nonnegative or False)  # fmt: skip
-    return ModelFit(effects, fit.coefficients, groups, shape, drive)
+    return ModelFit(effects, fit.coefficients, groups, shape, drive, features.scales.periods)
 
 
 def _weights(fit: ModelFit) -> tuple[float, ...]:

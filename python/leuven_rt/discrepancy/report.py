@@ -11,6 +11,7 @@ from .._typing import FloatArray
 from .features import Features
 from .localise import Region
 from .model import ModelFit
+from .settings import Settings
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,9 @@ class Diagnosis:
     steps: list[Step]
     unexplained_significant: bool
     unexplained_where: str
+    drift: bool
+    """The friction level changes over the record (outside the catalogue); fitted alongside."""
+    settings: Settings
     final_model: ModelFit
     regions_before: list[Region]
     regions_after: list[Region]
@@ -64,7 +68,12 @@ class Diagnosis:
                 }
                 for s in self.steps
             ],
-            "unexplained": {"significant": self.unexplained_significant, "where": self.unexplained_where},
+            "unexplained": {
+                "significant": self.unexplained_significant,
+                "where": self.unexplained_where,
+                "drift": self.drift,
+            },
+            "settings": self.settings.to_dict(),
             "final_model": self.final_model.to_dict(),
         }
 

@@ -1,7 +1,7 @@
 """Scores a model on data it was not fitted to: blocked cross-validation in time, and whether an
 improvement stands out against the estimated noise floor.
 
-The usable samples are cut into :data:`FOLDS` contiguous blocks; each block is predicted by the
+The usable samples are cut into :attr:`Settings.folds <.settings.Settings.folds>` contiguous blocks; each block is predicted by the
 model fitted to the other blocks. Blocks (not random samples) keep neighbouring, correlated
 samples on the same side of the split, so a term that only fits the noise gains nothing and a
 term that fits a slow change over time (which the catalogue does not have) does not carry over
@@ -20,20 +20,10 @@ from .._typing import FloatArray
 from ..errors import InputError
 from .features import Features
 from .model import fit_model
+from .settings import Settings
 
-#: Contiguous blocks of the cross-validation.
-FOLDS = 4
 #: Each block must hold at least this many samples.
 MIN_FOLD_SAMPLES = 100
-#: An added effect counts when it lowers the held-out mean squared error by more than this share
-#: of the noise variance σ² (and candidates within it of the best are as good: the one with the
-#: fewest coefficients is chosen among them).
-SIGNIFICANCE = 0.2
-#: ... and raises no block's mean squared error by more than this share of σ². An effect that
-#: helps in some blocks and hurts in others is fitting something that changes over time, which
-#: no effect here is (a drift costs its blocks several σ²); an effect whose signature is absent
-#: from a block, such as inertia in a block without acceleration, ties there.
-TIE = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,17 +39,17 @@ class Score:
         return float(np.mean(self.held_out**2))
 
 
-def blocks(features: Features) -> list[NDArray[np.bool_]]:
-    """The cross-validation blocks: FOLDS contiguous runs of usable samples."""
+def blocks(features: Features, folds: int) -> list[NDArray[np.bool_]]:
+    """The cross-validation blocks: ``folds`` contiguous runs of usable samples."""
     index = np.flatnonzero(features.usable)
-    if index.size < FOLDS * MIN_FOLD_SAMPLES:
+    if index.size < folds * MIN_FOLD_SAMPLES:
         raise InputError(
             "data too short to split for validation: "
-            f"need at least {FOLDS * MIN_FOLD_SAMPLES} usable samples ({FOLDS} blocks of {MIN_FOLD_SAMPLES}) "
+            f"need at least {folds * MIN_FOLD_SAMPLES} usable samples ({folds} blocks of {MIN_FOLD_SAMPLES}) "
             f"after the filter edges, got {index.size}"
         )
     masks = []
-    for part in np.array_split(index, FOLDS):
+    for part in np.array_split(index, folds):
         mask = np.zeros(features.usable.size, dtype=bool)
         mask[part] = True
         masks.append(mask)
@@ -81,22 +71,33 @@ def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArr
     return Score(tuple(effects), residual[features.usable], np.asarray(fold_mse), coefficients)
 
 
-def significant(current: Score, candidate: Score, noise_std: float) -> bool:
-    """The candidate lowers the held-out error by more than SIGNIFICANCE·σ², and raises no
-    block's by more than TIE·σ²."""
-    variance = noise_std**2
-    return bool(current.mse - candidate.mse > SIGNIFICANCE * variance
-                and np.all(candidate.fold_mse < current.fold_mse + TIE * variance))  # fmt: skip
+def gain(current: Score, candidate: Score, chunks: int) -> tuple[float, float, float]:
+    """The held-out mean squared error the candidate saves, and over ``chunks`` contiguous runs of
+    held-out samples, the sum of the runs' gains and the sum of their losses (both >= 0)."""
+    saved = current.held_out**2 - candidate.held_out**2
+    runs = np.array([float(np.mean(part)) for part in np.array_split(saved, chunks)])
+    return float(np.mean(saved)), float(np.sum(np.maximum(runs, 0.0))), float(np.sum(np.maximum(-runs, 0.0)))
 
 
-def choose(current: Score, candidates: list[Score], noise_std: float) -> Score | None:
+def significant(current: Score, candidate: Score, noise_std: float, settings: Settings) -> bool:
+    """The candidate lowers the held-out error by more than ``settings.significance``·σ², and the
+    runs where it does worse lose less than ``settings.loss`` times what the others gain: an
+    effect that helps in some runs and hurts in as many is fitting something that changes over
+    time, which no effect here is; an effect whose signature is absent from a run (inertia in a
+    run without acceleration) ties there; and one run that rises a little does not veto a gain
+    many times larger."""
+    mean, gained, lost = gain(current, candidate, settings.chunks)
+    return bool(mean > settings.significance * noise_std**2 and lost < settings.loss * gained)
+
+
+def choose(current: Score, candidates: list[Score], noise_std: float, settings: Settings) -> Score | None:
     """The significant candidate to add, or None: the fewest coefficients among those within
-    SIGNIFICANCE·σ² of the best."""
-    winners = [score for score in candidates if significant(current, score, noise_std)]
+    ``settings.significance``·σ² of the best."""
+    winners = [score for score in candidates if significant(current, score, noise_std, settings)]
     if not winners:
         return None
     best = min(score.mse for score in winners)
-    close = [score for score in winners if score.mse - best <= SIGNIFICANCE * noise_std**2]
+    close = [score for score in winners if score.mse - best <= settings.significance * noise_std**2]
     return min(close, key=lambda score: (score.coefficients, score.mse))
 
 
