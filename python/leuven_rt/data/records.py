@@ -80,7 +80,7 @@ class MotionData:
     def __post_init__(self) -> None:
         object.__setattr__(self, "units", check_units(self.units, error=DataError))
         notes: Any = self.notes  # typed as a tuple, but any value may come
-        if isinstance(notes, str) or not all(isinstance(note, str) for note in notes):
+        if not isinstance(notes, (list, tuple)) or not all(isinstance(note, str) for note in notes):
             raise DataError(f"`notes` must be a sequence of str, got {notes!r:.80}")
         object.__setattr__(self, "notes", tuple(notes))
         columns = {"t": self.t, "x": self.x, "f": self.f}
@@ -332,8 +332,6 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
     repeated = sorted({name for name in named if named.count(name) > 1})
     if repeated:
         raise DataError(f"cannot read {path} as {expected}: the header names {repeated} more than once")
-    if len(lines) < 2:
-        raise DataError(f"cannot read {path} as {expected}: there are no rows after the header")
     width = len(header)
     cells: list[list[str]] = []
     for number, line in enumerate(lines[1:], start=2):
@@ -346,7 +344,8 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
                 f"the header has {width}"
             )
         cells.append(row)
-    columns = list(zip(*cells, strict=True))
+    # Header only: empty columns, which the checks refuse as too few samples.
+    columns = list(zip(*cells, strict=True)) if cells else [() for _ in header]
     return {name: _csv_values(list(column)) for name, column in zip(header, columns, strict=True) if name}
 
 
