@@ -18,6 +18,7 @@ from tqdm import tqdm
 from .._extras import progress_wanted
 from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
+from ..units import unit_names
 from .effects import CATALOGUE, parse_effects
 from .features import compute_features
 from .localise import regions, where_improved, where_unexplained
@@ -46,6 +47,7 @@ def diagnose(
     folds = blocks(features)
     noise = noise_floor(record.f)
     usable = features.usable
+    unit = unit_names(record.units).force
 
     def fitted(effect_set: tuple[str, ...]) -> ModelFit:
         return fit_model(effect_set, features, usable)
@@ -79,8 +81,8 @@ def diagnose(
             effects = best.effects
             model = fitted(effects)
             after = features.force - model.predict(features)
-            steps.append(Step(added, where_improved(features, residual, after), rms(residual), rms(after),
-                              model.params(added)))  # fmt: skip
+            where = where_improved(features, residual, after, unit)
+            steps.append(Step(added, where, rms(residual), rms(after), model.params(added)))
             residual, current = after, best
             residuals.append(residual)
     final = model
@@ -89,7 +91,8 @@ def diagnose(
         samples=record.samples, noise_std=noise, baseline=parse_effects(baseline),
         rms_before=rms(residuals[0]), rms_after=rms(residual), steps=steps,
         unexplained_significant=bool(excess > UNEXPLAINED * noise**2),
-        unexplained_where=where_unexplained(features, residual, noise),
+        unexplained_where=where_unexplained(features, residual, noise, unit),
         final_model=final, regions_before=regions(features, residuals[0]),
         regions_after=regions(features, residual), features=features, residuals=residuals,
+        units=record.units,
     )  # fmt: skip
