@@ -114,6 +114,20 @@ def test_time_rounded_to_the_millisecond_is_resampled_and_noted() -> None:
     assert data.slice(0, 500).notes == data.notes
 
 
+def test_steps_of_one_to_twenty_milliseconds_are_not_a_gap() -> None:
+    """A log of mostly 1 ms steps with a few of 20 ms loads; a longer hole is still refused."""
+    steps = np.full(1999, 0.001)
+    steps[[100, 700, 1500]] = 0.02
+    t = np.round(np.r_[0.0, np.cumsum(steps)], 3)
+    with pytest.warns(ResamplingWarning, match=r"step 0\.001 s"):
+        data = as_motion_data(small_log(t=t, x=0.1 * np.sin(t), f=np.cos(t)))
+    assert data.dt == pytest.approx(0.001, rel=1e-9)
+    steps[700] = 0.05
+    t = np.round(np.r_[0.0, np.cumsum(steps)], 3)
+    with pytest.raises(DataError, match=r"`t` has a gap of 0\.05 s after sample 700"):
+        as_motion_data(small_log(t=t, x=0.1 * np.sin(t), f=np.cos(t)))
+
+
 def test_a_wander_below_one_percent_is_uniform() -> None:
     t = np.arange(SAMPLES) * 1e-3
     t[1::2] += 4e-6  # 0.4 % of the step

@@ -7,8 +7,8 @@ can then assume uniformly sampled, finite, increasing, plausibly scaled signals.
 Non-uniform sampling: time stamps that wander by more than :data:`UNIFORM_TOLERANCE` of the
 median step (robot logs stamped to the millisecond) are interpolated (linearly) onto a uniform
 grid at the median step, with a :class:`ResamplingWarning`; a step longer than :data:`MAX_GAP`
-median steps is a gap in the log and is refused, since interpolating across it would invent the
-motion in between.
+median steps (and than :data:`MIN_GAP`) is a gap in the log and is refused, since interpolating
+across it would invent the motion in between.
 
 Logs as users have them: ``columns`` maps the file's own column names onto ``t``, ``x``, ``f``,
 ``v``; header names may carry spaces, and empty trailing columns (rows ending in ``,,``) are
@@ -42,6 +42,9 @@ MIN_SAMPLES = 200
 UNIFORM_TOLERANCE = 1e-2
 #: A step longer than this many median steps is a gap: refused rather than interpolated.
 MAX_GAP = 10.0
+#: ... unless it is no longer than this [s]: robot controllers log at steps of 1 to 20 ms, so a
+#: 20 ms step in a log of mostly 1 ms steps is the controller's rhythm, not a hole in the log.
+MIN_GAP = 0.02
 #: Plausibility bounds of SI data; values beyond them are almost surely in other units.
 MAX_FORCE = 1e7  # N
 MAX_POSITION = 1e3  # m
@@ -220,16 +223,18 @@ def is_uniform(t: FloatArray) -> bool:
 def resample_uniform(columns: Mapping[str, FloatArray]) -> tuple[dict[str, FloatArray], str]:
     """Linear interpolation of every column onto a uniform grid at the median step; returns the
     columns and the text of the :class:`ResamplingWarning` it issues. A gap longer than
-    :data:`MAX_GAP` median steps is refused."""
+    :data:`MAX_GAP` median steps (and longer than :data:`MIN_GAP`) is refused."""
     t = columns["t"]
     steps = np.diff(t)
     step = float(np.median(steps))
     longest = float(np.max(steps))
-    if longest > MAX_GAP * step:
+    # The stamps' own rounding (a 20 ms step of rounded stamps comes out as 0.020000000000000018)
+    # must not turn the limit into a refusal.
+    if longest > max(MAX_GAP * step, MIN_GAP) * (1.0 + 1e-9):
         index = int(np.argmax(steps))
         raise DataError(
             f"`t` has a gap of {longest:g} s after sample {index} ({longest / step:.1f} median steps): "
-            f"expected steps within {MAX_GAP:g} median steps; split the log at the gap"
+            f"expected steps within {MAX_GAP:g} median steps (or {MIN_GAP:g} s); split the log at the gap"
         )
     grid = t[0] + step * np.arange(int(np.floor((t[-1] - t[0]) / step + 1e-9)) + 1)
     note = (
