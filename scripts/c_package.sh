@@ -54,7 +54,7 @@ sed "s/@VERSION@/$version/" crates/gms-ffi/cmake/leuven_rtConfigVersion.cmake.in
 soname="$(readelf -d "$lib/libleuven_rt.so" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')"
 [ "$soname" = "libleuven_rt.so.0" ] || { echo "unexpected SONAME '$soname'" >&2; exit 1; }
 
-# A parameter file as `leuven-rt identify` writes it.
+# A parameter file: the `friction` object of the model file that `leuven-rt identify` writes.
 cat >"$work/params.json" <<'JSON'
 {
   "Fc": 1.0,

@@ -1,12 +1,15 @@
 """leuven-rt: the modified Leuven friction model, a real-time Rust core with a Python front.
 
 - :class:`Params`: a validated parameter set (docs/parameters.md#keys).
+- :class:`ModelFile`: the versioned model file: friction, its position-dependent level
+  (:class:`PositionLevel`, :class:`Ripple`), measurement terms, units and the fit's report.
 - :func:`simulate`, :func:`simulate_position`: run velocity or position signals, (T,) or (B, T).
 - :class:`LeuvenModel`: stateful channels stepped sample by sample, with checkpoints.
 - :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
 - :class:`MassSystem`, :func:`simulate_mass`: a mass on the friction model driven by a force.
 - :func:`diagnose`: name the effects a friction model misses in a log (:mod:`leuven_rt.discrepancy`).
 - :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
+- :func:`predict`: a model's force along a log's motion, next to the measured force (:class:`Prediction`).
 - :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
 - :mod:`leuven_rt.reference`: the same discrete steps in plain numpy, written as the specification.
 - ``__version__``: the version of the package (the workspace version of Cargo.toml).
@@ -30,8 +33,10 @@ from ._core import MAX_ELEMENTS, MAX_ITERATIONS
 from ._core import __version__ as __version__
 from .compensation import Compensator
 from .errors import DataError, DivergenceError, InputError, ParameterError
+from .level import PositionLevel, Ripple
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
 from .model import LeuvenModel, ModelState, Trace
+from .modelfile import ModelFile
 from .online import OnlineIdentifier
 from .params import Params
 from .simulation import simulate, simulate_position
@@ -42,6 +47,7 @@ if TYPE_CHECKING:
     from .discrepancy.diagnose import diagnose
     from .discrepancy.report import Diagnosis
     from .identification import IdentificationResult, identify
+    from .prediction import Prediction, predict
 
 #: Names served on first use, and the module each comes from.
 _LAZY = {
@@ -50,6 +56,8 @@ _LAZY = {
     "IdentificationResult": "identification",
     "identify": "identification",
     "MotionData": "data.records",
+    "Prediction": "prediction",
+    "predict": "prediction",
 }
 
 __all__ = [
@@ -65,15 +73,20 @@ __all__ = [
     "MassState",
     "MassSystem",
     "MassTrajectory",
+    "ModelFile",
     "ModelState",
     "MotionData",
     "OnlineIdentifier",
     "ParameterError",
     "Params",
+    "PositionLevel",
+    "Prediction",
+    "Ripple",
     "Trace",
     "__version__",
     "diagnose",
     "identify",
+    "predict",
     "reference",
     "simulate",
     "simulate_mass",

@@ -4,23 +4,76 @@ Every command that writes files checks all of its output paths before it starts 
 file, no existing file unless ``--force``, a folder that exists or can be made, a figure format
 matplotlib writes) and writes them atomically: see :mod:`leuven_rt._output`. A refusal prints
 ``leuven-rt <command>: error: <message>`` on one line and exits with status 2.
+
+The commands that read a log (``identify``, ``diagnose``, ``predict``) take ``--columns`` (the
+log's own column names) and ``--units`` (linear or rotary), and print each warning of the loader
+(resampling, units that look wrong) as ``leuven-rt <command>: warning: <message>`` on stderr.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__
-from .errors import ConcurrentUseError, DivergenceError, InputError, ParameterError, StackOverflowError
+from .errors import (
+    ConcurrentUseError,
+    DivergenceError,
+    InputError,
+    ParameterError,
+    ResamplingWarning,
+    StackOverflowError,
+    UnitsWarning,
+)
+
+if TYPE_CHECKING:
+    from .data.records import MotionData
 
 #: The documented errors (docs/errors.md): each ends a command with its one-line message and
 #: status 2. Anything else is a bug, and keeps its traceback.
 DOCUMENTED = (ParameterError, InputError, DivergenceError, StackOverflowError, ConcurrentUseError)
 
 FORCE_HELP = "replace output files that exist (an input file is never overwritten)"
+
+
+LOG_HELP = "the log: a .csv with columns t,x,f[,v] (SI units; see --columns) or an EMPS .mat file"
+
+
+def _add_log_options(parser: argparse.ArgumentParser, units: str | None = "linear") -> None:
+    """``--columns`` and ``--units`` (default ``units``), for the commands that read a log."""
+    parser.add_argument(
+        "--columns",
+        help="the log's column for each of t, x, f and optionally v, e.g. t=time,x=q7,f=q7_tau_J,v=dq7 "
+        "(default: columns named t, x, f, v)",
+    )
+    parser.add_argument(
+        "--units",
+        choices=("linear", "rotary"),
+        default=units,
+        help="the kind of axis: linear (m, m/s, N) or rotary (rad, rad/s, N·m); default: "
+        + (units or "the model file's"),
+    )
+
+
+def _load(arguments: argparse.Namespace) -> MotionData:
+    """The log of ``arguments.data``, by ``--columns`` and ``--units``; the loader's warnings are
+    printed as one line each on stderr (and stay in the record's ``notes``)."""
+    from .data.records import as_motion_data, parse_column_map
+
+    columns = None if arguments.columns is None else parse_column_map(arguments.columns)
+    with warnings.catch_warnings():
+        # Printed below as the command's own lines, instead of Python's file:line form.
+        warnings.simplefilter("ignore", ResamplingWarning)
+        warnings.simplefilter("ignore", UnitsWarning)
+        record = as_motion_data(arguments.data, columns=columns, units=arguments.units)
+    for note in record.notes:
+        print(f"leuven-rt {arguments.command}: warning: {note}", file=sys.stderr)
+    return record
 
 
 def _folder_outputs(out: str, names: Sequence[str], force: bool) -> Path:
@@ -48,7 +101,7 @@ def _diagnose(arguments: argparse.Namespace) -> int:
 
     if arguments.plot is not None:
         check_outputs([("--plot", arguments.plot, True)], inputs=[arguments.data], force=arguments.force)
-    diagnosis = diagnose(arguments.data, arguments.baseline, progress=not arguments.json)
+    diagnosis = diagnose(_load(arguments), arguments.baseline, progress=not arguments.json)
     if arguments.plot is not None:
         from .discrepancy.plot import plot_diagnosis
 
@@ -76,28 +129,59 @@ def _figures(arguments: argparse.Namespace) -> int:
 
 def _identify(arguments: argparse.Namespace) -> int:
     from ._output import check_outputs, text_writer, write_files
-    from .identification import identify
+    from .identification import identify, model_file_from_identification
 
     outputs: list[tuple[str, str, bool]] = [("-o/--output", arguments.output, False)]
     if arguments.report is not None:
         outputs.append(("--report", arguments.report, False))
     targets = check_outputs(outputs, inputs=[arguments.data], force=arguments.force)
+    record = _load(arguments)
     result = identify(
-        arguments.data,
+        record,
         elements=arguments.elements,
         asymmetric=arguments.asymmetric,
         cutoff=arguments.cutoff,
         held_out=arguments.held_out,
         progress=not arguments.quiet,
     )
-    texts = [result.params.to_json() + "\n", result.report.to_json() + "\n"]
+    model = model_file_from_identification(result, units=record.units, notes=record.notes)
+    texts = [model.to_json() + "\n", result.report.to_json() + "\n"]
     # Both files or neither: each is written beside its target and renamed once both are complete.
     write_files([(target, text_writer(text)) for target, text in zip(targets, texts, strict=False)])
     if not arguments.quiet:
         print(result.report.summary())
-        print(f"parameters: {arguments.output}")
+        print(f"model file ({record.units}): {arguments.output}")
     for warning in result.report.warnings if arguments.quiet else ():
         print(f"warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _predict(arguments: argparse.Namespace) -> int:
+    from ._output import check_outputs
+    from .modelfile import ModelFile
+    from .prediction import predict
+
+    target = check_outputs(
+        [("-o/--output", arguments.output, False)],
+        inputs=[arguments.model, arguments.data],
+        force=arguments.force,
+    )[0]
+    model = ModelFile.load(arguments.model)
+    if arguments.units is not None and arguments.units != model.units:
+        raise InputError(
+            f"`--units` is {arguments.units!r}, but the model file {arguments.model} is {model.units!r}"
+        )
+    arguments.units = model.units
+    prediction = predict(model, _load(arguments), cutoff=arguments.cutoff)
+    # The target was checked before the work; force here: only a file made meanwhile can be in the way.
+    prediction.to_csv(target, force=True)
+    if arguments.json:
+        summary = {"rms": prediction.rms, "samples": prediction.samples, "units": prediction.units,
+                   "warnings": list(prediction.notes)}  # fmt: skip
+        print(json.dumps(summary))
+    else:
+        print(prediction.summary())
+        print(f"prediction: {arguments.output}")
     return 0
 
 
@@ -137,10 +221,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     identify = commands.add_parser(
         "identify", help="fit the model to a log of position and force (.csv t,x,f[,v] or EMPS .mat)"
     )
+    identify.add_argument("data", help=LOG_HELP)
     identify.add_argument(
-        "data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file"
+        "-o", "--output", required=True, help="where to write the model file (JSON, docs/data-and-reports.md)"
     )
-    identify.add_argument("-o", "--output", required=True, help="where to write the parameter file (JSON)")
     identify.add_argument("--report", help="also write the identification report here (JSON)")
     identify.add_argument(
         "--elements", type=int, help="number of Maxwell-slip elements (default: chosen from the data)"
@@ -152,14 +236,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
     identify.add_argument("--force", action="store_true", help=FORCE_HELP)
     identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    _add_log_options(identify)
     identify.set_defaults(run=_identify)
     diagnose = commands.add_parser(
         "diagnose",
         help="name the catalogue effects a friction model misses in a log, and how much each helps",
     )
-    diagnose.add_argument(
-        "data", help="the log: a .csv with columns t,x,f[,v] (SI units) or an EMPS .mat file"
-    )
+    diagnose.add_argument("data", help=LOG_HELP)
     diagnose.add_argument(
         "--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)"
     )
@@ -172,7 +255,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         "--plot", help="write the residual figure here (.png, .pdf, .svg, … : any format matplotlib writes)"
     )
     diagnose.add_argument("--force", action="store_true", help=FORCE_HELP)
+    _add_log_options(diagnose)
     diagnose.set_defaults(run=_diagnose)
+    predict = commands.add_parser(
+        "predict",
+        help="a model's force along a log's motion, next to the measured force: write t,f,f_model,friction",
+    )
+    predict.add_argument("model", help="the model file (or a plain parameter file) to run")
+    predict.add_argument("data", help=LOG_HELP)
+    predict.add_argument("-o", "--output", required=True, help="where to write the prediction (CSV)")
+    predict.add_argument(
+        "--json", action="store_true", help='print {"rms", "samples", "units", "warnings"} as JSON on stdout'
+    )
+    predict.add_argument(
+        "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
+    )
+    predict.add_argument("--force", action="store_true", help=FORCE_HELP)
+    _add_log_options(predict, units=None)  # the model file says its units; --units only confirms them
+    predict.set_defaults(run=_predict)
     control = commands.add_parser(
         "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
     )

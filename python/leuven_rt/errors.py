@@ -23,6 +23,7 @@ __all__ = [
     "ParameterError",
     "ResamplingWarning",
     "StackOverflowError",
+    "UnitsWarning",
 ]
 
 
@@ -45,6 +46,12 @@ class ConcurrentUseError(RuntimeError):
 
 class ResamplingWarning(UserWarning):
     """The time stamps were not uniform, so the data was interpolated onto a uniform grid."""
+
+
+class UnitsWarning(UserWarning):
+    """A loaded log looks as if a column were not in the units expected (time in milliseconds, a
+    linear position in millimetres, an angle in degrees): the message names the column and says
+    what was expected. The data is used as it is; the warning is also kept in its ``notes``."""
 
 
 class StackOverflowError(ValueError):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import pickle
+from typing import Any
 
 import numpy as np
 import pytest
@@ -114,9 +115,9 @@ def test_a_log_validated_on_load_is_not_validated_again(monkeypatch: pytest.Monk
     calls = []
     check = records.check_columns
 
-    def counted(given: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    def counted(given: dict[str, np.ndarray], **options: Any) -> dict[str, np.ndarray]:
         calls.append(sorted(given))
-        return check(given)
+        return check(given, **options)
 
     monkeypatch.setattr(records, "check_columns", counted)
     record = records.as_motion_data(columns)

@@ -51,6 +51,9 @@ def test_public_face_works_without_the_extras() -> None:
         path = os.path.join(tempfile.mkdtemp(), "params.json")
         p.save(path)
         p = lr.Params.load(path)
+        model = lr.ModelFile(friction=p, level=lr.PositionLevel(trend=(0.1, 0.0)), offset=0.2)
+        model.save(path + ".model.json")
+        assert lr.ModelFile.load(path + ".model.json") == model and lr.ModelFile.load(path).friction == p
         v = 1e-3 * np.sin(np.linspace(0, 6, 500))
         f = lr.simulate(p, v, 1e-3)
         model = lr.LeuvenModel(p)
@@ -74,6 +77,7 @@ def test_public_face_works_without_the_extras() -> None:
         ("leuven_rt.identification", "analysis"),
         ("leuven_rt.discrepancy", "analysis"),
         ("leuven_rt.data", "analysis"),
+        ("leuven_rt.prediction", "analysis"),
         ("leuven_rt.reference", "analysis"),
         ("leuven_rt._plot", "plot"),
     ],

@@ -62,3 +62,18 @@ def test_cli_diagnose_writes_json_and_plot(tmp_path: Path, capsys: pytest.Captur
     report = json.loads(capsys.readouterr().out)
     assert report["named_effects"] == ["offset"]
     assert figure.stat().st_size > 10_000
+
+
+def test_cli_diagnose_reads_named_columns_of_a_rotary_axis(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """--columns maps the file's names; --units rotary names the force N·m in the story."""
+    data = make_hidden(("coulomb", "viscous", "offset"), dt=8e-4).data
+    path = tmp_path / "joint.csv"
+    np.savetxt(path, np.column_stack((data.t, data.x, data.f)), delimiter=",", header="time, q2 ,tau_2",
+               comments="")  # fmt: skip
+    argv = ["diagnose", str(path), "--columns", "t=time,x=q2,f=tau_2", "--units", "rotary"]
+    assert main(argv) == 0
+    story = capsys.readouterr().out
+    assert "force noise floor" in story and " N·m" in story
+    assert " N " not in story and " N;" not in story and not story.rstrip().endswith(" N")

@@ -19,8 +19,8 @@ import pytest
 
 import leuven_rt.discrepancy
 import leuven_rt.identification
-from conftest import MAXWELL
-from leuven_rt import Params
+from conftest import MAXWELL, small_log
+from leuven_rt import ModelFile, Params
 from leuven_rt._output import check_outputs, image_formats, text_writer, write_files
 from leuven_rt.cli import main
 from leuven_rt.errors import OutputError
@@ -29,8 +29,11 @@ from leuven_rt.errors import OutputError
 class _Report:
     warnings: ClassVar[list[str]] = []
 
+    def to_dict(self) -> dict[str, Any]:
+        return {"held_out_rms": 0.1}
+
     def to_json(self) -> str:
-        return json.dumps({"held_out_rms": 0.1})
+        return json.dumps(self.to_dict())
 
     def summary(self) -> str:
         return "fitted"
@@ -61,8 +64,11 @@ def fit(monkeypatch: pytest.MonkeyPatch) -> list[Any]:
 
 @pytest.fixture
 def log(tmp_path: Path) -> Path:
+    """A valid log: the CLI loads it before the (stand-in) fit."""
     path = tmp_path / "log.csv"
-    path.write_text("t,x,f\n0,0,0\n", encoding="utf-8")
+    columns = small_log()
+    rows = [",".join(repr(float(columns[key][i])) for key in "txf") for i in range(len(columns["t"]))]
+    path.write_text("\n".join(["t,x,f", *rows]) + "\n", encoding="utf-8")
     return path
 
 
@@ -106,7 +112,7 @@ def test_existing_outputs_need_force(
     assert existing.read_text(encoding="utf-8") == figure.read_text(encoding="utf-8") == "keep me"
     assert fit == []
     assert main(["identify", str(log), "-o", str(existing), "--quiet", "--force"]) == 0
-    assert Params.load(existing) == _Result.params
+    assert ModelFile.load(existing) == ModelFile(friction=_Result.params, report={"held_out_rms": 0.1})
 
 
 @pytest.mark.parametrize(
@@ -140,7 +146,7 @@ def test_missing_folders_are_made(fit: list[Any], log: Path, tmp_path: Path) -> 
     made, and both files written."""
     output, report = tmp_path / "a" / "b" / "p.json", tmp_path / "c" / "r.json"
     assert main(["identify", str(log), "-o", str(output), "--report", str(report), "--quiet"]) == 0
-    assert Params.load(output) == _Result.params
+    assert ModelFile.load(output).friction == _Result.params
     assert json.loads(report.read_text(encoding="utf-8")) == {"held_out_rms": 0.1}
 
 
@@ -229,7 +235,7 @@ def test_params_save_is_atomic(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
         pytest.param(b"t,x,f\n", r"too few samples: need at least 200, got 0", id="header-only"),
         pytest.param("t,x,f\n0,1,2\n".encode("utf-16"), r"is not UTF-8 text \(byte 0 is 0xff\)", id="utf-16"),
         pytest.param("t,x,f\n0,1,é\n".encode("latin-1"), r"is not UTF-8 text", id="latin-1"),
-        pytest.param(b"t,x,f\n0,1\n", r"got 2 columns instead of 3", id="ragged"),
+        pytest.param(b"t,x,f\n0,1\n", r"line 2 has 2 cells, the header has 3", id="ragged"),
     ],
 )  # fmt: skip
 @pytest.mark.parametrize("command", ["identify", "diagnose"])

@@ -5,47 +5,69 @@ Bad data is refused once, here, with a :class:`DataError` naming the column; the
 can then assume uniformly sampled, finite, increasing, plausibly scaled signals.
 
 Non-uniform sampling: time stamps that wander by more than :data:`UNIFORM_TOLERANCE` of the
-median step are interpolated (linearly) onto a uniform grid at the median step, with a
-:class:`ResamplingWarning`; a step longer than :data:`MAX_GAP` median steps is a gap in the log
-and is refused, since interpolating across it would invent the motion in between.
+median step (robot logs stamped to the millisecond) are interpolated (linearly) onto a uniform
+grid at the median step, with a :class:`ResamplingWarning`; a step longer than :data:`MAX_GAP`
+median steps (and than :data:`MIN_GAP`) is a gap in the log and is refused, since interpolating
+across it would invent the motion in between.
+
+Logs as users have them: ``columns`` maps the file's own column names onto ``t``, ``x``, ``f``,
+``v``; header names may carry spaces, and empty trailing columns (rows ending in ``,,``) are
+dropped. Values that load but look like other units (time in milliseconds, a linear stroke in
+millimetres, an angle in degrees) give a :class:`UnitsWarning`. Every warning of the loader is
+also kept, as text, in :attr:`MotionData.notes`, so that reports can carry it.
 """
 
 from __future__ import annotations
 
-import io
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
-from typing import Any, Union, cast
+from typing import Any, Union
 
 import numpy as np
 import scipy.io
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from .._checks import real_array
 from .._typing import FloatArray
-from ..errors import DataError, ResamplingWarning
+from ..errors import DataError, ResamplingWarning, UnitsWarning
+from ..units import Units, check_units, unit_names
 
 #: Fewer samples than this cannot be filtered, split into training and held-out parts, and fitted.
 MIN_SAMPLES = 200
-#: Relative wander of the sampling step tolerated as uniform (EMPS: 4e-5).
-UNIFORM_TOLERANCE = 1e-3
+#: Relative wander of the sampling step tolerated as uniform (EMPS: 4e-5; robot logs stamped to
+#: the millisecond wander by far more, and are resampled).
+UNIFORM_TOLERANCE = 1e-2
 #: A step longer than this many median steps is a gap: refused rather than interpolated.
 MAX_GAP = 10.0
+#: ... unless it is no longer than this [s]: robot controllers log at steps of 1 to 20 ms, so a
+#: 20 ms step in a log of mostly 1 ms steps is the controller's rhythm, not a hole in the log.
+MIN_GAP = 0.02
 #: Plausibility bounds of SI data; values beyond them are almost surely in other units.
 MAX_FORCE = 1e7  # N
 MAX_POSITION = 1e3  # m
 MAX_VELOCITY = 1e3  # m/s
 STEP_RANGE = (1e-7, 1.0)  # s
+#: Plausibility warnings (UnitsWarning): a linear stroke beyond this looks like millimetres [m];
+#: an angle beyond this looks like degrees [rad]; a record longer than this looks like time in
+#: milliseconds [s] (as does a median step of at least MS_STEP with whole-number steps).
+MAX_LINEAR_STROKE = 5.0
+MAX_ANGLE = 100.0
+MAX_DURATION = 86_400.0
+MS_STEP = 0.5
+#: The names of a log's columns, in order; ``v`` is optional.
+ROLES = ("t", "x", "f", "v")
 
 
 @dataclass(frozen=True, eq=False)
 class MotionData:
-    """A uniformly sampled log: time ``t`` [s], position ``x`` [m], force ``f`` [N] to be
-    explained and, where measured, velocity ``v`` [m/s].
+    """A uniformly sampled log: time ``t`` [s], position ``x`` [m or rad], force ``f`` [N or N·m]
+    to be explained and, where measured, velocity ``v`` [m/s or rad/s].
 
+    ``units`` says which (``"linear"`` or ``"rotary"``); ``notes`` holds the text of every
+    warning given when the log was loaded (resampling, units that look wrong), for reports.
     Construction validates everything (see :func:`check_columns`); use :func:`as_motion_data`
     to load files or to resample non-uniform time stamps.
     """
@@ -55,12 +77,19 @@ class MotionData:
     f: FloatArray
     v: FloatArray | None = None
     source: str = "arrays"
+    units: Units = "linear"
+    notes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "units", check_units(self.units, error=DataError))
+        notes: Any = self.notes  # typed as a tuple, but any value may come
+        if not isinstance(notes, (list, tuple)) or not all(isinstance(note, str) for note in notes):
+            raise DataError(f"`notes` must be a sequence of str, got {notes!r:.80}")
+        object.__setattr__(self, "notes", tuple(notes))
         columns = {"t": self.t, "x": self.x, "f": self.f}
         if self.v is not None:
             columns["v"] = self.v
-        checked = check_columns(columns)
+        checked = check_columns(columns, units=self.units)
         if not is_uniform(checked["t"]):
             raise DataError(
                 f"`t` must be uniformly sampled (steps within {UNIFORM_TOLERANCE:g} of the median), "
@@ -72,12 +101,20 @@ class MotionData:
             object.__setattr__(self, name, values)
 
     @classmethod
-    def _from_checked(cls, checked: Mapping[str, FloatArray], source: str) -> MotionData:
+    def _from_checked(
+        cls,
+        checked: Mapping[str, FloatArray],
+        source: str,
+        units: Units = "linear",
+        notes: tuple[str, ...] = (),
+    ) -> MotionData:
         """A record of columns that :func:`check_columns` passed and that are uniformly sampled,
         taken as they are: a log validated on load is not validated again."""
         record = object.__new__(cls)
         object.__setattr__(record, "v", None)
         object.__setattr__(record, "source", source)
+        object.__setattr__(record, "units", units)
+        object.__setattr__(record, "notes", notes)
         for name, values in checked.items():
             values.setflags(write=False)
             object.__setattr__(record, name, values)
@@ -95,7 +132,8 @@ class MotionData:
     def slice(self, start: int, stop: int) -> MotionData:
         """Samples ``start:stop`` as a new record."""
         v = None if self.v is None else self.v[start:stop]
-        return MotionData(self.t[start:stop], self.x[start:stop], self.f[start:stop], v, self.source)
+        return MotionData(self.t[start:stop], self.x[start:stop], self.f[start:stop], v, self.source,
+                          self.units, self.notes)  # fmt: skip
 
 
 #: A log: a :class:`MotionData`, a path to a ``.csv`` or EMPS ``.mat`` file, or a mapping of
@@ -113,19 +151,21 @@ def _column(name: str, values: ArrayLike) -> FloatArray:
     return array
 
 
-def check_columns(columns: Mapping[str, ArrayLike]) -> dict[str, FloatArray]:
-    """Checks and converts the columns ``t``, ``x``, ``f`` (and ``v`` when present).
+def check_columns(columns: Mapping[str, ArrayLike], units: Units = "linear") -> dict[str, FloatArray]:
+    """Checks and converts the columns ``t``, ``x``, ``f`` (and ``v`` when present); ``units``
+    names the units in the messages.
 
     Refuses with :class:`DataError`: missing columns; columns of different lengths; fewer than
     :data:`MIN_SAMPLES` samples; NaN or infinite values (naming the first); time that does not
     strictly increase; a step outside :data:`STEP_RANGE`; forces, positions or velocities beyond
     the plausibility bounds of SI units; a position that never changes.
     """
+    names = unit_names(units)
     missing = [name for name in ("t", "x", "f") if name not in columns]
     if missing:
         raise DataError(
-            f"missing columns {missing}: expected `t` [s], `x` [m], `f` [N] and optionally `v` [m/s], "
-            f"got columns {sorted(columns)}"
+            f"missing columns {missing}: expected `t` [s], `x` [{names.position}], `f` [{names.force}] "
+            f"and optionally `v` [{names.velocity}], got columns {sorted(columns)}"
         )
     arrays = {name: _column(name, columns[name]) for name in ("t", "x", "f", "v") if name in columns}
     lengths = {name: array.size for name, array in arrays.items()}
@@ -152,7 +192,8 @@ def check_columns(columns: Mapping[str, ArrayLike]) -> dict[str, FloatArray]:
             f"the sampling step of `t` must be between {STEP_RANGE[0]:g} and {STEP_RANGE[1]:g} s, "
             f"got {step:g}: is `t` in seconds?"
         )
-    bounds = {"f": (MAX_FORCE, "N"), "x": (MAX_POSITION, "m"), "v": (MAX_VELOCITY, "m/s")}
+    bounds = {"f": (MAX_FORCE, names.force), "x": (MAX_POSITION, names.position),
+              "v": (MAX_VELOCITY, names.velocity)}  # fmt: skip
     for name, (bound, unit) in bounds.items():
         if name in arrays:
             largest = float(np.max(np.abs(arrays[name])))
@@ -164,8 +205,8 @@ def check_columns(columns: Mapping[str, ArrayLike]) -> dict[str, FloatArray]:
     speed = float(np.max(np.abs(np.diff(arrays["x"]))) / step)
     if speed > MAX_VELOCITY:
         raise DataError(
-            f"`x` moves at up to {speed:g} m/s between samples, beyond {MAX_VELOCITY:g} m/s: "
-            "expected `x` in m and `t` in s"
+            f"`x` moves at up to {speed:g} {names.velocity} between samples, beyond {MAX_VELOCITY:g} "
+            f"{names.velocity}: expected `x` in {names.position} and `t` in s"
         )
     if np.ptp(arrays["x"]) == 0.0:
         raise DataError("`x` never changes: there is no motion to identify friction from")
@@ -179,32 +220,98 @@ def is_uniform(t: FloatArray) -> bool:
     return bool(np.max(np.abs(steps - median)) <= UNIFORM_TOLERANCE * median)
 
 
-def resample_uniform(columns: Mapping[str, FloatArray]) -> dict[str, FloatArray]:
-    """Linear interpolation of every column onto a uniform grid at the median step, with a
-    :class:`ResamplingWarning`; a gap longer than :data:`MAX_GAP` median steps is refused."""
+def resample_uniform(columns: Mapping[str, FloatArray]) -> tuple[dict[str, FloatArray], str]:
+    """Linear interpolation of every column onto a uniform grid at the median step; returns the
+    columns and the text of the :class:`ResamplingWarning` it issues. A gap longer than
+    :data:`MAX_GAP` median steps (and longer than :data:`MIN_GAP`) is refused."""
     t = columns["t"]
     steps = np.diff(t)
     step = float(np.median(steps))
     longest = float(np.max(steps))
-    if longest > MAX_GAP * step:
+    # The stamps' own rounding (a 20 ms step of rounded stamps comes out as 0.020000000000000018)
+    # must not turn the limit into a refusal.
+    if longest > max(MAX_GAP * step, MIN_GAP) * (1.0 + 1e-9):
         index = int(np.argmax(steps))
         raise DataError(
             f"`t` has a gap of {longest:g} s after sample {index} ({longest / step:.1f} median steps): "
-            f"expected steps within {MAX_GAP:g} median steps; split the log at the gap"
+            f"expected steps within {MAX_GAP:g} median steps (or {MIN_GAP:g} s); split the log at the gap"
         )
     grid = t[0] + step * np.arange(int(np.floor((t[-1] - t[0]) / step + 1e-9)) + 1)
-    warnings.warn(
-        f"`t` is not uniformly sampled (steps from {np.min(steps):g} to {longest:g} s): "
-        f"resampled linearly onto a uniform grid with step {step:g} s ({grid.size} samples)",
-        ResamplingWarning,
-        stacklevel=3,
+    note = (
+        f"`t` is not uniformly sampled (steps from {np.min(steps):g} to {longest:g} s, more than "
+        f"{UNIFORM_TOLERANCE:.0%} from the median): resampled linearly onto a uniform grid with step "
+        f"{step:g} s ({grid.size} samples)"
     )
-    return {name: (grid if name == "t" else np.interp(grid, t, values)) for name, values in columns.items()}
+    warnings.warn(note, ResamplingWarning, stacklevel=3)
+    resampled = {
+        name: (grid if name == "t" else np.interp(grid, t, values)) for name, values in columns.items()
+    }
+    return resampled, note
+
+
+def plausibility_notes(
+    columns: Mapping[str, FloatArray], units: Units, names: Mapping[str, str] | None = None
+) -> list[str]:
+    """Texts of the :class:`UnitsWarning` for checked columns that look like other units (time
+    in milliseconds, a linear stroke in millimetres, an angle in degrees); ``names`` gives the
+    file's name of each column, for the message. Warns with each; the data is left as it is."""
+    names = names or {}
+
+    def label(role: str) -> str:
+        source = names.get(role, role)
+        return f"column `{role}`" if source == role else f"column `{role}` (`{source}` in the file)"
+
+    notes: list[str] = []
+    t = columns["t"]
+    steps = np.diff(t)
+    step = float(np.median(steps))
+    duration = float(t[-1] - t[0])
+    if step >= MS_STEP and bool(np.all(steps == np.round(steps))):
+        notes.append(
+            f"{label('t')} steps by whole numbers (median step {step:g}): this looks like time in "
+            "milliseconds; expected seconds"
+        )
+    elif duration > MAX_DURATION:
+        notes.append(
+            f"{label('t')} spans {duration:g} s, more than a day: this looks like time in milliseconds "
+            "(or a clock of another unit); expected seconds"
+        )
+    x = columns["x"]
+    if units == "linear" and float(np.ptp(x)) > MAX_LINEAR_STROKE:
+        notes.append(
+            f"{label('x')} spans {float(np.ptp(x)):g} m, a linear stroke beyond {MAX_LINEAR_STROKE:g} m: "
+            "this looks like millimetres; expected metres (or units='rotary' for an angle in rad)"
+        )
+    if units == "rotary" and float(np.max(np.abs(x))) > MAX_ANGLE:
+        notes.append(
+            f"{label('x')} reaches {float(np.max(np.abs(x))):g} rad, beyond ±{MAX_ANGLE:g} rad: this looks "
+            "like degrees; expected radians"
+        )
+    for note in notes:
+        warnings.warn(note, UnitsWarning, stacklevel=3)
+    return notes
+
+
+def _csv_values(cells: list[str]) -> FloatArray:
+    """One column of text cells as floats: an empty or non-numeric cell becomes NaN, which the
+    checks refuse naming the sample when the column is used, and which is harmless when not."""
+    try:
+        return np.array(cells, dtype=np.float64)
+    except ValueError:  # some cell is empty or not a number: convert one by one
+        values = np.empty(len(cells))
+        for index, cell in enumerate(cells):
+            try:
+                values[index] = float(cell)
+            except ValueError:
+                values[index] = np.nan
+        return values
 
 
 def load_csv(path: Path) -> dict[str, FloatArray]:
     """Columns of a CSV file with a header line (docs/data-and-reports.md#measured-data: ``t,x,f[,v]``),
-    UTF-8 (a byte-order mark is allowed)."""
+    UTF-8 (a byte-order mark is allowed), by their names in the header, spaces around them
+    stripped. Unnamed columns that hold nothing (rows ending in ``,,``) are dropped; a row with
+    more or fewer cells than the header otherwise is refused."""
     expected = (
         f"a CSV file in UTF-8 with a header line `t,x,f[,v]` and at least {MIN_SAMPLES} rows of numbers"
     )
@@ -222,21 +329,29 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
         raise DataError(f"{path} is empty: expected {expected}")
     if "\0" in text:
         raise DataError(f"{path} holds NUL characters, so it is not text: expected {expected}")
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error")  # numpy warns of odd files: refuse them instead
-            table = np.genfromtxt(
-                io.StringIO(text, newline=None), delimiter=",", names=True, dtype=np.float64, encoding=None
-            )
-    except (ValueError, IndexError, TypeError, Warning) as error:
-        message = " ".join(str(error).split())[:300]
-        raise DataError(f"cannot read {path} as {expected}: {message}") from None
-    names = table.dtype.names
-    if names is None:
+    lines = [line for line in text.splitlines() if line.strip()]
+    header = [name.strip() for name in lines[0].split(",")]
+    if not any(header):
         raise DataError(f"{path} must start with a header line naming the columns, e.g. `t,x,f`")
-    # With names=True the table is a structured array (one field per column), not float64 as typed.
-    records = cast("NDArray[np.void]", np.atleast_1d(table))
-    return {name: np.asarray(records[name], dtype=np.float64) for name in names}
+    named = [name for name in header if name]
+    repeated = sorted({name for name in named if named.count(name) > 1})
+    if repeated:
+        raise DataError(f"cannot read {path} as {expected}: the header names {repeated} more than once")
+    width = len(header)
+    cells: list[list[str]] = []
+    for number, line in enumerate(lines[1:], start=2):
+        row = line.split(",")
+        if len(row) > width and not "".join(row[width:]).strip():
+            row = row[:width]  # empty trailing cells: nothing there to read
+        if len(row) != width:
+            raise DataError(
+                f"cannot read {path} as {expected}: line {number} has {len(row)} cells, "
+                f"the header has {width}"
+            )
+        cells.append(row)
+    # Header only: empty columns, which the checks refuse as too few samples.
+    columns = list(zip(*cells, strict=True)) if cells else [() for _ in header]
+    return {name: _csv_values(list(column)) for name, column in zip(header, columns, strict=True) if name}
 
 
 def load_emps(path: Path) -> dict[str, FloatArray]:
@@ -279,31 +394,109 @@ def load_columns(path: str | PathLike[str]) -> dict[str, FloatArray]:
     raise DataError(f"data file must end in .csv or .mat, got {path.name!r}")
 
 
-def as_motion_data(data: DataLike) -> MotionData:
+def check_column_map(columns: Any) -> dict[str, str]:
+    """A ``columns`` mapping (``{"t": "time", "x": "q7", ...}``: the log's column for each of
+    ``t``, ``x``, ``f``, ``v``) checked, as a plain dict."""
+    if not isinstance(columns, Mapping):
+        raise DataError(
+            f"`columns` must be a mapping from t, x, f, v to the log's column names, got {columns!r:.80}"
+        )
+    unknown = [key for key in columns if key not in ROLES]
+    if unknown:
+        raise DataError(f"`columns` maps {unknown!r:.80}: expected keys among t, x, f, v")
+    for key, name in columns.items():
+        if not isinstance(name, str) or not name.strip():
+            raise DataError(f"`columns[{key!r}]` must be a column name, got {name!r:.80}")
+    return {key: name.strip() for key, name in columns.items()}
+
+
+def parse_column_map(text: str) -> dict[str, str]:
+    """The command line's ``--columns t=time,x=q7,f=tau[,v=dq7]`` as a ``columns`` mapping."""
+    mapping: dict[str, str] = {}
+    for item in text.split(","):
+        key, equals, name = item.partition("=")
+        key = key.strip()
+        if not equals or not name.strip() or key not in ROLES:
+            raise DataError(
+                f"`--columns` must be a list like t=time,x=q7,f=tau[,v=dq7] (keys among t, x, f, v), "
+                f"got {item.strip()!r} in {text!r:.120}"
+            )
+        if key in mapping:
+            raise DataError(f"`--columns` gives `{key}` twice in {text!r:.120}")
+        mapping[key] = name.strip()
+    return mapping
+
+
+def select_columns(raw: Mapping[str, Any], columns: Mapping[str, str], source: str) -> dict[str, Any]:
+    """The log's columns renamed to ``t``, ``x``, ``f`` (and ``v``) by ``columns``; a role not
+    mapped keeps a column of its own name. A mapped name the log lacks is refused, listing the
+    log's columns."""
+    missing = {key: name for key, name in columns.items() if name not in raw}
+    if missing:
+        key, name = next(iter(missing.items()))
+        have = ", ".join(str(column) for column in raw)
+        raise DataError(
+            f"`columns` maps `{key}` to the column `{name}`, which {source} does not have: "
+            f"its columns are {have}"
+        )
+    taken = {name for name in columns.values()}
+    selected = {key: raw[name] for key, name in columns.items()}
+    for role in ROLES:
+        if role not in selected and role in raw and role not in taken:
+            selected[role] = raw[role]
+    return selected
+
+
+def as_motion_data(
+    data: DataLike, *, columns: Mapping[str, str] | None = None, units: Units | None = None
+) -> MotionData:
     """Accepts a :class:`MotionData` (returned as it is: it was validated when built), a path to a
     ``.csv``/``.mat`` file, or a mapping with the columns ``t``, ``x``, ``f`` (and optionally
     ``v``); validates once, and resamples non-uniform time stamps with a
-    :class:`ResamplingWarning`."""
+    :class:`ResamplingWarning`.
+
+    ``columns``: the log's own name for each of ``t``, ``x``, ``f``, ``v`` (a ``.csv`` or a
+    mapping; e.g. ``{"t": "time", "x": "q7", "f": "q7_tau_J_compensate"}``). ``units``:
+    ``"linear"`` (default) or ``"rotary"``; a :class:`MotionData` of other units is refused.
+    Columns that look like other units give a :class:`UnitsWarning`. Every warning's text is
+    kept in the record's ``notes``.
+    """
+    chosen = None if units is None else check_units(units, error=DataError)
+    mapping = None if columns is None else check_column_map(columns)
     if isinstance(data, MotionData):
+        if mapping:
+            raise DataError("`columns` applies to a file or a mapping of columns, not to a MotionData")
+        if chosen is not None and chosen != data.units:
+            raise DataError(f"`units` is {chosen!r}, but the MotionData holds {data.units!r} data")
         return data
-    columns: Mapping[str, ArrayLike]
+    raw: Mapping[str, ArrayLike]
     if isinstance(data, (str, PathLike)):
-        columns, source = load_columns(data), str(data)
+        raw, source = load_columns(data), str(data)
+        if mapping and Path(data).suffix.lower() == ".mat":
+            raise DataError(f"{source}: `columns` applies to .csv files and mappings, not to EMPS .mat files")
     elif isinstance(data, Mapping):
-        columns, source = dict(data), "arrays"
+        raw, source = dict(data), "arrays"
     else:
         raise DataError(
             f"`data` must be a MotionData, a path to a .csv or .mat file, or a mapping of columns "
             f"t, x, f[, v]; got {type(data).__name__}"
         )
+    kind: Units = chosen or "linear"
+    notes: list[str] = []
     try:
-        checked: dict[str, Any] = check_columns(columns)
+        selected = (
+            raw
+            if mapping is None
+            else select_columns(raw, mapping, "the log" if source == "arrays" else "it")
+        )
+        checked: dict[str, Any] = check_columns(selected, units=kind)
         if not is_uniform(checked["t"]):
-            # New samples on a new grid: MotionData validates them, once.
-            resampled = resample_uniform(checked)
-            return MotionData(resampled["t"], resampled["x"], resampled["f"], resampled.get("v"), source)
+            checked, note = resample_uniform(checked)
+            notes.append(note)
+            checked = check_columns(checked, units=kind)  # new samples on a new grid: checked once
+        notes += plausibility_notes(checked, kind, mapping)
     except DataError as error:
         if source == "arrays":
             raise
         raise DataError(f"{source}: {error}") from None  # which file, when it came from one
-    return MotionData._from_checked(checked, source)
+    return MotionData._from_checked(checked, source, kind, tuple(notes))

@@ -25,6 +25,7 @@ from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
 from .._typing import FloatArray
 from ..errors import InputError
+from ..units import unit_names
 from .effects import CATALOGUE, DRIFT, parse_effects
 from .features import Features, compute_features
 from .localise import regions, where_improved, where_unexplained
@@ -76,9 +77,10 @@ def diagnose(
     folds = blocks(features, settings.folds)
     noise = noise_floor(record.f)
     usable = features.usable
+    unit = unit_names(record.units).force
 
     with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
-        run = _select(effects, features, folds, noise, settings, bar)
+        run = _select(effects, features, folds, noise, settings, bar, unit)
         # A level that changes over the record makes effects look useful that are not there: when
         # the final model still gains from a level drifting in time, the rounds are run again
         # with the drift fitted alongside, and the drift is reported as unexplained.
@@ -89,14 +91,14 @@ def diagnose(
             settings,
         )
         if drift:
-            run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar)
+            run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
 
     def rms(residual: FloatArray) -> float:
         return float(np.sqrt(np.mean(residual[usable] ** 2)))
 
     residual = run.residual
     excess = float(np.mean(residual[usable] ** 2)) - noise**2
-    where = where_unexplained(run.features, residual, noise)
+    where = where_unexplained(run.features, residual, noise, unit)
     if drift:
         where = f"{DRIFT.missing} (a drift, outside the catalogue); {where}"
     return Diagnosis(
@@ -106,6 +108,7 @@ def diagnose(
         unexplained_where=where, drift=drift, settings=settings,
         final_model=run.model, regions_before=regions(run.features, run.residuals[0]),
         regions_after=regions(run.features, residual), features=run.features, residuals=run.residuals,
+        units=record.units,
     )  # fmt: skip
 
 
@@ -116,6 +119,7 @@ def _select(
     noise: float,
     settings: Settings,
     bar: tqdm[NoReturn],
+    unit: str,
 ) -> _Selection:
     """The rounds from ``effects``: add the best significant effect (or pair) until none is."""
     usable = features.usable
@@ -150,7 +154,7 @@ def _select(
             model = fit_model(effects_now, run.features, usable)
             after = run.features.force - model.predict(run.features)
             run.steps.append(
-                Step(name, where_improved(run.features, run.residual, after), _rms(run.residual, usable),
+                Step(name, where_improved(run.features, run.residual, after, unit), _rms(run.residual, usable),
                      _rms(after, usable), model.params(name))  # fmt: skip
             )
             run.effects, run.model, run.residual = effects_now, model, after

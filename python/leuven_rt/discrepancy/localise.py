@@ -62,14 +62,14 @@ def regions(features: Features, residual: FloatArray) -> list[Region]:
     return out
 
 
-def _describe(name: str, share: float, before: float, after: float | None) -> str:
-    numbers = f"rms {before:.3g} N" if after is None else f"rms {before:.3g} -> {after:.3g} N"
+def _describe(name: str, share: float, before: float, after: float | None, unit: str = "N") -> str:
+    numbers = f"rms {before:.3g} {unit}" if after is None else f"rms {before:.3g} -> {after:.3g} {unit}"
     return f"{name}: {numbers} over {share:.0%} of the samples"
 
 
-def where_improved(features: Features, before: FloatArray, after: FloatArray) -> str:
+def where_improved(features: Features, before: FloatArray, after: FloatArray, unit: str = "N") -> str:
     """The region where the residual's mean square dropped most against the whole record, or
-    "everywhere" when no region stands out."""
+    "everywhere" when no region stands out; ``unit`` is the force's."""
     usable = features.usable
     overall = float(np.mean(before[usable] ** 2 - after[usable] ** 2))
     best, best_drop = None, -np.inf
@@ -80,18 +80,19 @@ def where_improved(features: Features, before: FloatArray, after: FloatArray) ->
     rms_before = float(np.sqrt(np.mean(before[usable] ** 2)))
     rms_after = float(np.sqrt(np.mean(after[usable] ** 2)))
     if best is None or overall <= 0 or best_drop < STANDS_OUT * overall:
-        return _describe("everywhere", 1.0, rms_before, rms_after)
+        return _describe("everywhere", 1.0, rms_before, rms_after, unit)
     mask = region_masks(features)[best]
     return _describe(best, float(np.mean(mask[usable])), float(np.sqrt(np.mean(before[mask] ** 2))),
-                     float(np.sqrt(np.mean(after[mask] ** 2))))  # fmt: skip
+                     float(np.sqrt(np.mean(after[mask] ** 2))), unit)  # fmt: skip
 
 
-def where_unexplained(features: Features, residual: FloatArray, noise_std: float) -> str:
-    """The region with the largest excess of the residual over the noise (mean square − σ²)."""
+def where_unexplained(features: Features, residual: FloatArray, noise_std: float, unit: str = "N") -> str:
+    """The region with the largest excess of the residual over the noise (mean square − σ²);
+    ``unit`` is the force's."""
     usable = features.usable
     overall = float(np.mean(residual[usable] ** 2)) - noise_std**2
     table = regions(features, residual)
     worst = max(table, key=lambda region: region.rms**2)
     if overall <= 0 or worst.rms**2 - noise_std**2 < STANDS_OUT * overall:
-        return _describe("everywhere", 1.0, float(np.sqrt(np.mean(residual[usable] ** 2))), None)
-    return _describe(worst.name, worst.share, worst.rms, None)
+        return _describe("everywhere", 1.0, float(np.sqrt(np.mean(residual[usable] ** 2))), None, unit)
+    return _describe(worst.name, worst.share, worst.rms, None, unit)

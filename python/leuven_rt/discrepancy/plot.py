@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .._plot import figure, save
+from ..units import unit_names
 from .localise import region_masks
 from .report import Diagnosis
 
@@ -16,6 +17,8 @@ from .report import Diagnosis
 def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
     f = diagnosis.features
     usable = f.usable
+    names = unit_names(diagnosis.units)
+    force, position, velocity = names.force, names.position, names.velocity
     labels = ["baseline"] + [f"+ {step.effect}" for step in diagnosis.steps]
     drawing, axes = figure(2, 2, size=(13, 8))
     by_time, by_velocity, by_position, by_travel = axes.ravel()
@@ -28,21 +31,25 @@ def plot_diagnosis(diagnosis: Diagnosis, path: str | Path) -> Path:
         by_velocity.plot(f.v[usable], residual[usable], ".", markersize=1, label=label)
         by_position.plot(f.x[usable], residual[usable], ".", markersize=1, label=label)
         by_travel.plot(np.maximum(f.travel[usable], 1e-12), residual[usable], ".", markersize=1, label=label)
-    by_time.set(xlabel="time t [s]", ylabel="residual f − model [N]", title="Residual over time")
-    by_velocity.set(xlabel="velocity v [m/s]", ylabel="residual [N]", title="Residual vs velocity")
+    by_time.set(xlabel="time t [s]", ylabel=f"residual f − model [{force}]", title="Residual over time")
+    by_velocity.set(
+        xlabel=f"velocity v [{velocity}]", ylabel=f"residual [{force}]", title="Residual vs velocity"
+    )
     linear_below = max(float(np.percentile(np.abs(f.v[usable]), 10)), 1e-12)
     by_velocity.set_xscale("symlog", linthresh=linear_below)
     # Decades from ten times the linear range outwards, and 0: labels at ±linthresh would collide.
     top = max(float(np.max(np.abs(f.v[usable]))), 10.0 * linear_below)
     decades = 10.0 ** np.arange(np.ceil(np.log10(10.0 * linear_below)), np.floor(np.log10(top)) + 1)
     by_velocity.set_xticks(np.concatenate((-decades[::-1], [0.0], decades)))
-    by_position.set(xlabel="position x [m]", ylabel="residual [N]", title="Residual vs position")
-    by_travel.set(xlabel="displacement since reversal [m]", ylabel="residual [N]", xscale="log",
-                  title="Residual vs displacement since reversal")  # fmt: skip
+    by_position.set(
+        xlabel=f"position x [{position}]", ylabel=f"residual [{force}]", title="Residual vs position"
+    )
+    by_travel.set(xlabel=f"displacement since reversal [{position}]", ylabel=f"residual [{force}]",
+                  xscale="log", title="Residual vs displacement since reversal")  # fmt: skip
     for axis in axes.ravel():
         axis.grid(alpha=0.3)
         axis.legend(fontsize=7, markerscale=8, loc="upper right")
-    drawing.suptitle(f"diagnose: rms {diagnosis.rms_before:.3g} N -> {diagnosis.rms_after:.3g} N "
-                    f"(noise floor {diagnosis.noise_std:.3g} N)")  # fmt: skip
+    drawing.suptitle(f"diagnose: rms {diagnosis.rms_before:.3g} {force} -> {diagnosis.rms_after:.3g} {force} "
+                    f"(noise floor {diagnosis.noise_std:.3g} {force})")  # fmt: skip
     drawing.tight_layout()
     return save(drawing, path, dpi=110)

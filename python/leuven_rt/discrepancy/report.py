@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .._typing import FloatArray
+from ..units import Units, unit_names
 from .features import Features
 from .localise import Region
 from .model import ModelFit
@@ -45,6 +46,8 @@ class Diagnosis:
     features: Features = field(repr=False)
     residuals: list[FloatArray] = field(repr=False)
     """In-sample residual of the baseline, then after each step (every sample)."""
+    units: Units = "linear"
+    """The log's kind of axis: the unit names of the story and the figure."""
 
     @property
     def named_effects(self) -> list[str]:
@@ -82,19 +85,20 @@ class Diagnosis:
 
     def story(self) -> str:
         """The diagnosis in sentences, with the numbers."""
-        lines = [f"{self.samples} samples; force noise floor {self.noise_std:.3g} N",
-                 f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} N",
+        N = unit_names(self.units).force
+        lines = [f"{self.samples} samples; force noise floor {self.noise_std:.3g} {N}",
+                 f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} {N}",
                  "where the baseline and the data disagree (residual rms by region):"]  # fmt: skip
         for region in sorted(self.regions_before, key=lambda r: -r.rms):
-            lines.append(f"  {region.name:<38} rms {region.rms:8.3g} N  mean {region.mean:+9.3g} N  "
+            lines.append(f"  {region.name:<38} rms {region.rms:8.3g} {N}  mean {region.mean:+9.3g} {N}  "
                          f"({region.share:.0%} of samples)")  # fmt: skip
         for number, step in enumerate(self.steps, 1):
             values = ", ".join(f"{key} = {value:.4g}" for key, value in step.params.items())
             lines.append(f"step {number}: missing `{step.effect}` ({values}); rms {step.rms_before:.3g} -> "
-                         f"{step.rms_after:.3g} N; where: {step.where}")  # fmt: skip
+                         f"{step.rms_after:.3g} {N}; where: {step.where}")  # fmt: skip
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
         verdict = "significant" if self.unexplained_significant else "at the noise floor"
-        lines.append(f"final model: rms {self.rms_after:.3g} N ({self.rms_after / self.noise_std:.2f}x "
+        lines.append(f"final model: rms {self.rms_after:.3g} {N} ({self.rms_after / self.noise_std:.2f}x "
                      f"the noise floor); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
         return "\n".join(lines)

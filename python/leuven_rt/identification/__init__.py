@@ -4,7 +4,9 @@
   report (errors per stage, held-out error, conditioning, warnings);
 - the stages: :mod:`.inverse_model` (IDIM-LS: inertia, viscous, Coulomb, offset, as in the EMPS
   benchmark), :mod:`.sliding`, :mod:`.presliding`, :mod:`.refine` (simulation-error fits through
-  the Rust core), :mod:`.pipeline` (the order they run in), :mod:`.report`.
+  the Rust core), :mod:`.pipeline` (the order they run in), :mod:`.report`;
+- :func:`model_file_from_identification`: the model file (:class:`~leuven_rt.ModelFile`) that
+  ``leuven-rt identify -o`` writes from a result.
 
 The data toolkit it works from (loading, derivatives, reversals, regression) is
 :mod:`leuven_rt.data`; its names are re-exported here as before.
@@ -20,6 +22,7 @@ from ..data.regression import LinearFit, fit_linear
 from ..data.signals import estimate_derivatives
 from ..errors import DataError, ResamplingWarning
 from .inverse_model import REGRESSORS, RIGID_BODY, fit_inverse_model
+from .model_file import model_file_from_identification
 from .pipeline import identify
 from .report import IdentificationReport, IdentificationResult, Stage
 
@@ -39,4 +42,5 @@ __all__ = [
     "fit_linear",
     "identify",
     "load_columns",
+    "model_file_from_identification",
 ]
