@@ -75,8 +75,11 @@ def diagnose(
     record = as_motion_data(data)
     features = compute_features(record)
     folds = blocks(features, settings.folds)
-    noise = noise_floor(record.f)
     usable = features.usable
+    # The noise is read from what the baseline leaves: its steps at reversals and its slow
+    # changes are gone, so the long lags that coloured noise needs see noise, not force.
+    start = features.force - fit_model(effects, features, usable).predict(features)
+    noise = min(noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2))))
     unit = unit_names(record.units).force
 
     with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:

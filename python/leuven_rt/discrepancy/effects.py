@@ -88,8 +88,8 @@ def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[
 CATALOGUE: dict[str, Effect] = {
     effect.name: effect
     for effect in (
-        Effect("coulomb", "a constant friction level Fc·sgn(v)", _coulomb),
-        Effect("viscous", "sigma2·v", lambda f, m, s: {"sigma2": f.v}),
+        Effect("coulomb", "a constant friction level Fc·sgn(v)", _coulomb, nonnegative=("Fc",)),
+        Effect("viscous", "sigma2·v", lambda f, m, s: {"sigma2": f.v}, nonnegative=("sigma2",)),
         Effect("stribeck", "Fs > Fc, Vs, δ", _stribeck, nonnegative=("Fs_minus_Fc",)),
         Effect("asymmetry", "levels differ between v > 0 and v < 0", _asymmetry),
         Effect(

@@ -12,7 +12,7 @@ the next pass, starting from the bank driven by x; the fit with the smallest res
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -43,6 +43,8 @@ class ModelFit:
     drive: Drive | None = None
     periods: tuple[float, ...] = ()
     """The ripple periods the position columns were built with."""
+    standard_errors: dict[str, float] = field(default_factory=dict)
+    """Of each coefficient, from the linear fit (the Stribeck shape and the drive held fixed)."""
 
     def predict(self, features: Features) -> FloatArray:
         return self.predict_columns(self.drive.apply(features) if self.drive is not None else features)
@@ -107,7 +109,8 @@ def _fit_linear_part(
     nonnegative = [column for name in effects for column in TERMS[name].nonnegative]
     fit = fit_linear({key: value[rows] for key, value in columns.items()}, features.force[rows],
                      nonnegative or False)  # fmt: skip
-    return ModelFit(effects, fit.coefficients, groups, shape, drive, features.scales.periods)
+    return ModelFit(effects, fit.coefficients, groups, shape, drive, features.scales.periods,
+                    fit.standard_errors)  # fmt: skip
 
 
 def _weights(fit: ModelFit) -> tuple[float, ...]:

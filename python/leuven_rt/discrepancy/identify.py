@@ -1,0 +1,61 @@
+"""``identify``: the workflow's fit, ending in the model file a compensator runs.
+
+``identify`` and :func:`~leuven_rt.diagnose` are one fit: the rounds of :mod:`.diagnose` choose
+the effects the log supports, and :mod:`.deploy` turns the final model into a
+:class:`~leuven_rt.ModelFile` (the friction model, its position-dependent level, the measurement
+terms). What the data could not determine is fixed at a safe value and named in the warnings;
+only unusable data (too short, not finite, time not increasing) is refused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from ..data.records import DataLike, as_motion_data
+from ..modelfile import ModelFile
+from .deploy import deploy
+from .diagnose import DEFAULT_BASELINE, diagnose
+from .report import Diagnosis
+from .settings import Settings
+
+
+@dataclass(frozen=True, eq=False)
+class Identification:
+    """What :func:`leuven_rt.identify` returns: the model file and the diagnosis it came from."""
+
+    model: ModelFile
+    diagnosis: Diagnosis
+    warnings: tuple[str, ...]
+
+    @property
+    def params(self) -> object:
+        """The friction model (:class:`~leuven_rt.Params`) of the file."""
+        return self.model.friction
+
+    def summary(self) -> str:
+        lines = [self.diagnosis.story(), f"model file: {', '.join(self.diagnosis.baseline + tuple(self.diagnosis.named_effects))}"]
+        lines.extend(f"warning: {text}" for text in self.warnings)
+        return "\n".join(lines)
+
+
+def identify(
+    data: DataLike,
+    baseline: str | Sequence[str] = DEFAULT_BASELINE,
+    *,
+    settings: Settings | None = None,
+    progress: bool = False,
+) -> Identification:
+    """Fits the friction model ``data`` supports and returns its model file (module documentation).
+
+    ``data``: a :class:`~leuven_rt.MotionData`, a ``.csv`` or EMPS ``.mat`` path, or a mapping
+    of columns. ``baseline``, ``settings``, ``progress``: as for :func:`~leuven_rt.diagnose`.
+    """
+    record = as_motion_data(data)
+    diagnosis = diagnose(record, baseline, settings=settings, progress=progress)
+    report = diagnosis.to_dict()
+    report.pop("final_model", None)  # the file holds the model itself
+    if record.notes:
+        report["data_notes"] = list(record.notes)
+    deployment = deploy(diagnosis.final_model, diagnosis.features, record.units, report)
+    return Identification(deployment.model, diagnosis, (*record.notes, *deployment.warnings))
