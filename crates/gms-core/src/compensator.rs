@@ -113,6 +113,13 @@ impl<H: Hysteresis> Compensator<H> {
         Self { level, ..self }
     }
 
+    /// Replaces the level between two samples (it was validated when it was built). The level
+    /// has no memory, so the model state carries over; the output follows the new factor from
+    /// the next sample on.
+    pub fn set_level(&mut self, level: Level) {
+        self.level = level;
+    }
+
     /// Sets the position (finite) from which feedforward mode integrates the desired velocity;
     /// the next step's level is evaluated at `x + v·dt`. Observer mode takes the position from
     /// its input and does not read this one. A refused value changes nothing.

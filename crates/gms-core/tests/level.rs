@@ -343,6 +343,11 @@ fn feedforward_integrates_from_the_start_position() {
         );
     }
     assert_eq!(leveled.position(), x);
+    // Swapping the level leaves the state; a flat level gives the plain output again.
+    leveled.set_level(Level::none());
+    assert_eq!(leveled.state(), plain.state());
+    assert_eq!(leveled.step(1e-3).unwrap(), plain.step(1e-3).unwrap());
+    x += 1e-3 * DT;
     // Resetting the model does not move the axis.
     leveled.reset();
     assert_eq!(leveled.position(), x);

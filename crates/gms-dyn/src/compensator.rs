@@ -33,6 +33,7 @@ trait Axis: Send + Sync {
     fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error>;
     fn position(&self) -> f64;
     fn level(&self) -> Level;
+    fn set_level(&mut self, level: &Level);
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error>;
     fn reset(&mut self);
     fn output(&self) -> f64;
@@ -61,6 +62,10 @@ where
 
     fn level(&self) -> Level {
         *gms_core::Compensator::level(self)
+    }
+
+    fn set_level(&mut self, level: &Level) {
+        gms_core::Compensator::set_level(self, *level);
     }
 
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error> {
@@ -158,6 +163,11 @@ impl Compensator {
     /// The feedforward position: the start position plus the desired velocities integrated since.
     pub fn position(&self) -> f64 {
         self.axis.position()
+    }
+
+    /// Replaces the position-dependent level between two samples; the model state carries over.
+    pub fn set_level(&mut self, level: &Level) {
+        self.axis.set_level(level);
     }
 
     /// The position-dependent level ([`Level::none`] when none was given).
