@@ -61,7 +61,8 @@ enum leuven_rt_status
   // The step produced a non-finite force (inputs far outside SI magnitudes). The output
   // holds the last good force.
   LEUVEN_RT_STEP_FAILED = 7,
-  // A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
+  // object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
   // has an unknown, missing or mistyped key; the error message names the key or the cause.
   LEUVEN_RT_INVALID_FILE = 8,
 };

@@ -100,7 +100,8 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
-    /// A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
+    /// object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
     /// has an unknown, missing or mistyped key; the error message names the key or the cause.
     LEUVEN_RT_INVALID_FILE = 8,
 }
@@ -249,7 +250,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
-        8 => c"the parameter file cannot be read or has an unknown, missing or mistyped key",
+        8 => c"the parameter or model file cannot be read, or has another format or version, or an unknown, missing or mistyped key",
         _ => c"unknown status",
     };
     message.as_ptr()
