@@ -3,7 +3,8 @@
 Each sample, ``step`` takes the desired velocity (``mode="feedforward"``) or the measured
 position (``mode="observer"``) and returns the friction force to add to the command. The model
 is the Rust core's (gms-core ``Compensator``), stepped implicitly at the fixed ``dt`` given at
-construction, with bounded work per step (at most 2N + 1 evaluations of the hysteresis force).
+construction, with bounded work per step (at most 2N + 1 evaluations of the hysteresis force,
+and with a level one sincos per ripple).
 ``set_params`` swaps parameters between samples without a jump in the output: the hysteresis
 force carries over (see crates/gms-core/src/compensator.rs).
 
@@ -77,7 +78,7 @@ class Compensator(_core.CompensatorEngine):
 
     @guarded
     def reset(self) -> None:
-        """Back to rest: relaxed hysteresis, output 0."""
+        """Back to rest: relaxed hysteresis, output 0; the feedforward ``position`` stays."""
         super().reset()
 
     # Narrower than the engine's on purpose: a Params or a mapping of its keys.

@@ -143,6 +143,20 @@ impl<H: Hysteresis> Compensator<H> {
     /// last output.
     #[inline]
     pub fn step(&mut self, input: f64) -> Result<f64, Error> {
+        // Only a level can refuse a force the model accepted; without one the step runs in
+        // place, exactly as the plain model's, and nothing needs to be put back.
+        let saved = (!self.level.is_flat()).then_some((self.state, self.output));
+        let result = self.step_unchecked(input);
+        if let (Err(_), Some((state, output))) = (&result, saved) {
+            self.state = state;
+            self.output = output;
+        }
+        result
+    }
+
+    /// [`Compensator::step`] without putting the state back when the level refuses the force.
+    #[inline]
+    fn step_unchecked(&mut self, input: f64) -> Result<f64, Error> {
         match self.mode {
             Mode::Feedforward => {
                 let position = self.position + input * self.dt;
@@ -155,21 +169,20 @@ impl<H: Hysteresis> Compensator<H> {
                         value: position,
                     });
                 }
-                let mut state = self.state;
                 let force = self
                     .params
-                    .step(&mut state, input, self.dt, Scheme::Implicit)?;
+                    .step(&mut self.state, input, self.dt, Scheme::Implicit)?;
                 let force = self.finish(force, position, input)?;
-                self.state = state;
                 self.position = position;
                 Ok(force)
             }
             Mode::Observer => {
                 let previous = self.state.last_position;
-                let mut state = self.state;
+                // The velocity of this step, from the position before it (0 on the first).
+                let v = position_velocity(&self.state, input, self.dt);
                 let force = self
                     .params
-                    .step_position(&mut state, input, self.dt, Scheme::Implicit)
+                    .step_position(&mut self.state, input, self.dt, Scheme::Implicit)
                     .map_err(|error| match (error, previous) {
                         // A finite position can still jump too far for one sample: say so with
                         // the positions, not with a velocity the caller never gave.
@@ -185,11 +198,8 @@ impl<H: Hysteresis> Compensator<H> {
                         },
                         (error, _) => error,
                     })?;
-                // The step succeeded, so the velocity it used is finite.
-                let v = position_velocity(&self.state, input, self.dt).unwrap_or(0.0);
-                let force = self.finish(force, input, v)?;
-                self.state = state;
-                Ok(force)
+                // The step succeeded, so its velocity was finite.
+                self.finish(force, input, v.unwrap_or(0.0))
             }
         }
     }
