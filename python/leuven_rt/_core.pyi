@@ -8,8 +8,11 @@ from typing_extensions import Self, disjoint_base
 
 __all__ = [
     "MAX_ELEMENTS",
+    "MAX_HARMONICS",
     "MAX_ITERATIONS",
+    "MAX_RIPPLES",
     "CompensatorEngine",
+    "CoreLevel",
     "CoreParams",
     "DivergenceError",
     "Engine",
@@ -25,6 +28,8 @@ __all__ = [
 __version__: str
 MAX_ELEMENTS: int
 MAX_ITERATIONS: int
+MAX_RIPPLES: int
+MAX_HARMONICS: int
 
 _Scheme = Literal["implicit", "explicit"]
 _Mode = Literal["feedforward", "observer"]
@@ -69,6 +74,37 @@ class CoreParams:
     @property
     def elements(self) -> int: ...
 
+class _RippleLike(Protocol):
+    """What the extension reads from a ripple: the attributes of ``leuven_rt.level.Ripple``."""
+
+    @property
+    def period(self) -> float: ...
+    @property
+    def cos(self) -> Any: ...
+    @property
+    def sin(self) -> Any: ...
+
+class _LevelLike(Protocol):
+    """What the extension reads from a level: the attributes of ``leuven_rt.level.PositionLevel``."""
+
+    @property
+    def middle(self) -> float: ...
+    @property
+    def half_stroke(self) -> float: ...
+    @property
+    def trend(self) -> Any: ...
+    @property
+    def ripples(self) -> Any: ...
+
+@final
+class CoreLevel:
+    """A position-dependent level validated once; the compensator and the position run take it."""
+
+    def __new__(cls, level: _LevelLike | CoreLevel) -> Self: ...
+    def factor(self, x: float) -> float: ...
+    @property
+    def ripples(self) -> int: ...
+
 def check_params(params: _ParamsLike | CoreParams) -> None: ...
 def slip_responses(x: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]: ...
 
@@ -92,6 +128,9 @@ class Engine:
         self, input: NDArray[np.float64], dt: float, position: bool
     ) -> NDArray[np.float64]: ...
     def _run(self, input: NDArray[np.float64], dt: float, position: bool) -> NDArray[np.float64]: ...
+    def _run_position_level(
+        self, input: NDArray[np.float64], dt: float, level: _LevelLike | CoreLevel
+    ) -> NDArray[np.float64]: ...
     def _run_position_deflection(
         self, x: NDArray[np.float64], dt: float
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
@@ -108,8 +147,17 @@ class Engine:
 
 @disjoint_base
 class CompensatorEngine:
-    def __new__(cls, params: _ParamsLike | CoreParams, dt: float, mode: _Mode) -> Self: ...
+    def __new__(
+        cls,
+        params: _ParamsLike | CoreParams,
+        dt: float,
+        mode: _Mode,
+        level: _LevelLike | CoreLevel | None = None,
+    ) -> Self: ...
     def step(self, input: float) -> float: ...
+    def set_position(self, x: float) -> None: ...
+    @property
+    def position(self) -> float: ...
     def set_params(self, params: _ParamsLike | CoreParams) -> None: ...
     def reset(self) -> None: ...
     @property

@@ -3,9 +3,16 @@
 Each sample, ``step`` takes the desired velocity (``mode="feedforward"``) or the measured
 position (``mode="observer"``) and returns the friction force to add to the command. The model
 is the Rust core's (gms-core ``Compensator``), stepped implicitly at the fixed ``dt`` given at
-construction, with bounded work per step (at most 2N + 1 evaluations of the hysteresis force).
+construction, with bounded work per step (at most 2N + 1 evaluations of the hysteresis force,
+and with a level one sincos per ripple).
 ``set_params`` swaps parameters between samples without a jump in the output: the hysteresis
 force carries over (see crates/gms-core/src/compensator.rs).
+
+With a position-dependent ``level`` (:class:`~leuven_rt.level.PositionLevel`), the output is
+``level.factor(x)·(F − sigma2·v) + sigma2·v``. In observer mode x is the input; in feedforward
+mode the compensator integrates the desired velocity, x ← x + v·dt, from the position given to
+``set_position`` (0 until then), so a feedforward compensator with a level needs the axis's
+start position (docs/model.md#position-dependent-level).
 """
 
 from __future__ import annotations
@@ -16,6 +23,7 @@ from . import _core
 from ._checks import as_step, busy, guarded, is_borrow_error
 from ._typing import Mode
 from .errors import InputError
+from .level import PositionLevel, core_level
 from .params import Params, ParamsLike, as_params, core_params
 
 MODES: tuple[Mode, ...] = ("feedforward", "observer")
@@ -27,22 +35,35 @@ class Compensator(_core.CompensatorEngine):
     ``step(input) -> float``: the force for this sample (the fast path for a Python loop; a
     non-finite input raises :class:`InputError` and leaves state and ``output`` unchanged).
     ``set_params(params)``: new parameters of the same kind and number of elements.
-    ``reset()``: back to rest. ``output``: the last force returned.
+    ``reset()``: back to rest. ``output``: the last force returned. ``level``: the
+    position-dependent level or None; ``set_position(x)`` and ``position``: the position that
+    feedforward mode integrates the desired velocity from (see the module documentation).
 
     A compensator's calls hold the GIL, so threads take turns; should two ever overlap (a
     free-threaded Python), the second raises :class:`~leuven_rt.errors.ConcurrentUseError`.
     """
 
     _params: Params
+    _level: PositionLevel | None
 
-    def __new__(cls, params: ParamsLike, dt: float, mode: Mode = "feedforward") -> Compensator:
+    def __new__(
+        cls,
+        params: ParamsLike,
+        dt: float,
+        mode: Mode = "feedforward",
+        level: PositionLevel | None = None,
+    ) -> Compensator:
         if mode not in MODES:
             raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
         given = as_params(params)
-        # The engine gets the set validated when `given` was built, and does not check it again;
-        # gms-core checks the value of dt.
-        engine = super().__new__(cls, core_params(given), as_step(dt), cast("Mode", str(mode)))
+        validated_level = None if level is None else core_level(level)
+        # The engine gets the set and the level validated when they were built, and does not
+        # check them again; gms-core checks the value of dt.
+        engine = super().__new__(
+            cls, core_params(given), as_step(dt), cast("Mode", str(mode)), validated_level
+        )
         engine._params = given
+        engine._level = level
         return engine
 
     def step(self, input: float) -> float:
@@ -57,7 +78,7 @@ class Compensator(_core.CompensatorEngine):
 
     @guarded
     def reset(self) -> None:
-        """Back to rest: relaxed hysteresis, output 0."""
+        """Back to rest: relaxed hysteresis, output 0; the feedforward ``position`` stays."""
         super().reset()
 
     # Narrower than the engine's on purpose: a Params or a mapping of its keys.
@@ -68,10 +89,21 @@ class Compensator(_core.CompensatorEngine):
         super().set_params(core_params(given))
         self._params = given
 
+    @guarded
+    def set_position(self, x: float) -> None:
+        """Sets the position (finite) from which feedforward mode integrates the desired velocity
+        to evaluate the level; observer mode takes the position from its input."""
+        super().set_position(x)
+
     @property
     def params(self) -> Params:
         """The parameters in use."""
         return self._params
+
+    @property
+    def level(self) -> PositionLevel | None:
+        """The position-dependent level, or None."""
+        return self._level
 
     def __repr__(self) -> str:
         return f"Compensator(mode={self.mode!r}, dt={self.dt!r}, elements={self.elements})"

@@ -17,12 +17,17 @@ everywhere. docs/model.md#position-dependent-level has the equations and the rul
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from . import _core
 from ._typing import FloatArray
+from .errors import ParameterError
+from .params import _real, _reals
 
 #: Most ripples (distinct periods) a level holds.
 MAX_RIPPLES = 2
@@ -39,6 +44,13 @@ class Ripple:
     cos: tuple[float, ...]
     sin: tuple[float, ...]
 
+    def __post_init__(self) -> None:
+        # Types only; the values are gms-core's to check, with the ripple's index, when a
+        # PositionLevel holding this ripple is built.
+        object.__setattr__(self, "period", _real("period", self.period))
+        object.__setattr__(self, "cos", _reals("cos", self.cos))
+        object.__setattr__(self, "sin", _reals("sin", self.sin))
+
 
 @dataclass(frozen=True)
 class PositionLevel:
@@ -50,6 +62,30 @@ class PositionLevel:
     trend: tuple[float, float] = (0.0, 0.0)
     ripples: tuple[Ripple, ...] = ()
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "middle", _real("middle", self.middle))
+        object.__setattr__(self, "half_stroke", _real("half_stroke", self.half_stroke))
+        trend = _reals("trend", self.trend)
+        if len(trend) != 2:
+            raise ParameterError(
+                f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}"
+            )
+        object.__setattr__(self, "trend", trend)
+        object.__setattr__(self, "ripples", _ripples(self.ripples))
+        # gms-core checks the values once (ParameterError naming the first rule broken); the
+        # validated level is kept for the engines as a plain attribute, not a dataclass field,
+        # as Params keeps its own.
+        object.__setattr__(self, "_validated", _core.CoreLevel(self))
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The fields only (for pickle and copy): the core object is rebuilt on restore."""
+        return {field.name: getattr(self, field.name) for field in fields(self)}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
+        object.__setattr__(self, "_validated", _core.CoreLevel(self))
+
     def factor(self, x: ArrayLike) -> FloatArray:
         """factor(x) on every sample of ``x``."""
         position = np.asarray(x, dtype=float)
@@ -60,3 +96,36 @@ class PositionLevel:
             for k, (c, s) in enumerate(zip(ripple.cos, ripple.sin, strict=True), start=1):
                 out = out + c * np.cos(k * phase) + s * np.sin(k * phase)
         return out
+
+
+def _ripples(ripples: Any) -> tuple[Ripple, ...]:
+    """``ripples`` as a tuple of :class:`Ripple`; mappings with the keys period, cos, sin are
+    turned into ripples (as a model file holds them)."""
+    if isinstance(ripples, (str, bytes, bytearray, Mapping)) or not hasattr(ripples, "__iter__"):
+        raise ParameterError(f"`ripples` must be a sequence of Ripple, got {ripples!r:.80}")
+    out = []
+    for index, ripple in enumerate(ripples):
+        if isinstance(ripple, Ripple):
+            out.append(ripple)
+        elif isinstance(ripple, Mapping):
+            keys = {"period", "cos", "sin"}
+            if set(ripple) != keys:
+                raise ParameterError(
+                    f"`ripples[{index}]` must have the keys {sorted(keys)}, got {sorted(ripple, key=repr)}"
+                )
+            try:
+                out.append(Ripple(**ripple))
+            except ParameterError as error:
+                raise ParameterError(f"`ripples[{index}]`: {error}") from None
+        else:
+            raise ParameterError(f"`ripples[{index}]` must be a Ripple, got {ripple!r:.80}")
+    return tuple(out)
+
+
+def core_level(level: PositionLevel) -> Any:
+    """What the engines take: the gms-core level validated when ``level`` was built."""
+    if not isinstance(level, PositionLevel):
+        raise ParameterError(
+            f"`level` must be a leuven_rt.level.PositionLevel or None, got {type(level).__name__}"
+        )
+    return vars(level)["_validated"]

@@ -7,6 +7,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._checks import as_signal, as_step, check_scheme
 from ._typing import FloatArray, Scheme
+from .level import PositionLevel, core_level
 from .params import ParamsLike, core_params
 
 
@@ -30,6 +31,26 @@ def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: Scheme = "impl
     return _run(params, v, "v", dt, scheme)
 
 
-def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: Scheme = "implicit") -> FloatArray:
-    """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
-    return _run(params, x, "x", dt, scheme)
+def simulate_position(
+    params: ParamsLike,
+    x: ArrayLike,
+    dt: float,
+    scheme: Scheme = "implicit",
+    *,
+    level: PositionLevel | None = None,
+) -> FloatArray:
+    """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample.
+
+    With a position-dependent ``level`` (docs/model.md#position-dependent-level), each force is
+    ``level.factor(x)·(F − sigma2·v) + sigma2·v``, F the force without it; the model's state
+    evolves as without the level.
+    """
+    if level is None:
+        return _run(params, x, "x", dt, scheme)
+    validated_level = core_level(level)
+    validated = core_params(params)
+    array, one_dimensional = as_signal(x, "x")
+    step = as_step(dt)
+    engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
+    out = engine._run_position_level(array, step, validated_level)
+    return out[0] if one_dimensional else out

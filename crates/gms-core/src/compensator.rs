@@ -14,10 +14,21 @@
 //!   internal deflection z tracks the real junctions. Any position signal works, so a desired
 //!   position gives position-based feedforward.
 //!
+//! **Position-dependent level.** [`Compensator::with_level`] gives the compensator a
+//! [`Level`] (docs/model.md#position-dependent-level): the output becomes
+//! factor(x)·(F − σ2·v) + σ2·v, with F the plain model's force and v the step's velocity. In
+//! observer mode x is the input. In feedforward mode the compensator integrates the desired
+//! velocity, x ← x + v·dt, from the position given to [`Compensator::set_position`] (0 until
+//! then): with a level, a feedforward compensator needs the axis's start position, or its
+//! ripples and trend are out of phase with the machine. The level scales the output only; the
+//! model state evolves as without it, and [`Level::none`] (the default) gives the plain output
+//! bit for bit.
+//!
 //! **Bounded work.** A step is one implicit model step: at most 2N + 1 evaluations of the
 //! hysteresis trial, each O(N) (see the solver), plus for n ∉ {1, 2} at most
 //! [`MAX_ITERATIONS`](crate::MAX_ITERATIONS) safeguarded Newton iterations on each of those
-//! pieces. [`Compensator::set_params`] costs at most 2N + 1 trial evaluations and two commits.
+//! pieces; with a level, one sincos per ripple and at most
+//! [`MAX_HARMONICS`](crate::MAX_HARMONICS) rotations per ripple. [`Compensator::set_params`] costs at most 2N + 1 trial evaluations and two commits.
 //! Nothing allocates and nothing panics.
 //!
 //! **Parameter swap without a jump.** The hysteresis force Fh carries the model's memory; σ1·ż
@@ -38,7 +49,8 @@
 use crate::checks::positive;
 use crate::error::{Error, Field};
 use crate::hysteresis::Hysteresis;
-use crate::model::{Params, Scheme, State};
+use crate::level::Level;
+use crate::model::{position_velocity, Params, Scheme, State};
 
 /// What the compensator's input is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -74,6 +86,9 @@ pub struct Compensator<H: Hysteresis> {
     dt: f64,
     mode: Mode,
     output: f64,
+    level: Level,
+    /// The feedforward position: the desired velocity integrated from [`Compensator::set_position`].
+    position: f64,
 }
 
 impl<H: Hysteresis> Compensator<H> {
@@ -86,7 +101,38 @@ impl<H: Hysteresis> Compensator<H> {
             dt,
             mode,
             output: 0.0,
+            level: Level::none(),
+            position: 0.0,
         })
+    }
+
+    /// This compensator with a position-dependent level (see the module documentation); the
+    /// level was validated when it was built.
+    #[must_use]
+    pub fn with_level(self, level: Level) -> Self {
+        Self { level, ..self }
+    }
+
+    /// Replaces the level between two samples (it was validated when it was built). The level
+    /// has no memory, so the model state carries over; the output follows the new factor from
+    /// the next sample on.
+    pub fn set_level(&mut self, level: Level) {
+        self.level = level;
+    }
+
+    /// Sets the position (finite) from which feedforward mode integrates the desired velocity;
+    /// the next step's level is evaluated at `x + v·dt`. Observer mode takes the position from
+    /// its input and does not read this one. A refused value changes nothing.
+    pub fn set_position(&mut self, x: f64) -> Result<(), Error> {
+        if x.is_finite() {
+            self.position = x;
+            Ok(())
+        } else {
+            Err(Error::NotFiniteValue {
+                field: Field::x,
+                value: x,
+            })
+        }
     }
 
     /// The friction force to add to the command for this sample.
@@ -97,14 +143,45 @@ impl<H: Hysteresis> Compensator<H> {
     /// last output.
     #[inline]
     pub fn step(&mut self, input: f64) -> Result<f64, Error> {
-        let force = match self.mode {
+        // Only a level can refuse a force the model accepted; without one the step runs in
+        // place, exactly as the plain model's, and nothing needs to be put back.
+        let saved = (!self.level.is_flat()).then_some((self.state, self.output));
+        let result = self.step_unchecked(input);
+        if let (Err(_), Some((state, output))) = (&result, saved) {
+            self.state = state;
+            self.output = output;
+        }
+        result
+    }
+
+    /// [`Compensator::step`] without putting the state back when the level refuses the force.
+    #[inline]
+    fn step_unchecked(&mut self, input: f64) -> Result<f64, Error> {
+        match self.mode {
             Mode::Feedforward => {
-                self.params
-                    .step(&mut self.state, input, self.dt, Scheme::Implicit)?
+                let position = self.position + input * self.dt;
+                // Only a level reads the position: without one, a feedforward step is exactly
+                // the plain model's (an overflowing integral of an absurd velocity is harmless).
+                if !self.level.is_flat() && input.is_finite() && !position.is_finite() {
+                    return Err(Error::NotFinite {
+                        field: Field::x,
+                        index: 0,
+                        value: position,
+                    });
+                }
+                let force = self
+                    .params
+                    .step(&mut self.state, input, self.dt, Scheme::Implicit)?;
+                let force = self.finish(force, position, input)?;
+                self.position = position;
+                Ok(force)
             }
             Mode::Observer => {
                 let previous = self.state.last_position;
-                self.params
+                // The velocity of this step, from the position before it (0 on the first).
+                let v = position_velocity(&self.state, input, self.dt);
+                let force = self
+                    .params
                     .step_position(&mut self.state, input, self.dt, Scheme::Implicit)
                     .map_err(|error| match (error, previous) {
                         // A finite position can still jump too far for one sample: say so with
@@ -120,9 +197,20 @@ impl<H: Hysteresis> Compensator<H> {
                             dt: self.dt,
                         },
                         (error, _) => error,
-                    })?
+                    })?;
+                // The step succeeded, so its velocity was finite.
+                self.finish(force, input, v.unwrap_or(0.0))
             }
-        };
+        }
+    }
+
+    /// The plain force `force` with the level at `x` and velocity `v`, recorded as the output.
+    #[inline]
+    fn finish(&mut self, force: f64, x: f64, v: f64) -> Result<f64, Error> {
+        let force = self.level.apply(force, x, v, self.params.sigma2());
+        if !force.is_finite() {
+            return Err(Error::Diverged { index: 0 });
+        }
         self.output = force;
         Ok(force)
     }
@@ -153,7 +241,9 @@ impl<H: Hysteresis> Compensator<H> {
         self.params = params;
     }
 
-    /// Back to rest: relaxed state, no previous position, output 0.
+    /// Back to rest: relaxed state, no previous position, output 0. The feedforward position
+    /// stays: resetting the model does not move the axis (call [`Compensator::set_position`]
+    /// if it has moved).
     pub fn reset(&mut self) {
         self.state = self.params.relaxed_state();
         self.output = 0.0;
@@ -182,6 +272,18 @@ impl<H: Hysteresis> Compensator<H> {
     /// What the input is.
     pub fn mode(&self) -> Mode {
         self.mode
+    }
+
+    /// The position-dependent level ([`Level::none`] unless [`Compensator::with_level`] gave one).
+    pub fn level(&self) -> &Level {
+        &self.level
+    }
+
+    /// The feedforward position: the start given to [`Compensator::set_position`] (0 by
+    /// default) plus the integral of the desired velocities stepped since. Observer mode leaves
+    /// it alone.
+    pub fn position(&self) -> f64 {
+        self.position
     }
 }
 

@@ -63,6 +63,16 @@ pub enum Field {
     z,
     /// Element positions ζ of a channel state written by a caller.
     zeta,
+    /// Middle of the stroke of a position-dependent level.
+    middle,
+    /// Half the stroke of a position-dependent level.
+    half_stroke,
+    /// Legendre coefficients (t1, t2) of a level's trend.
+    trend,
+    /// Cosine amplitudes of a level's ripple.
+    cos,
+    /// Sine amplitudes of a level's ripple.
+    sin,
 }
 
 impl Field {
@@ -96,6 +106,11 @@ impl Field {
             Field::regressor => "regressor",
             Field::z => "z",
             Field::zeta => "zeta",
+            Field::middle => "middle",
+            Field::half_stroke => "half_stroke",
+            Field::trend => "trend",
+            Field::cos => "cos",
+            Field::sin => "sin",
         }
     }
 }
@@ -276,6 +291,51 @@ pub enum Error {
         /// Length of the output slice that came.
         got: usize,
     },
+    /// A level with more than [`MAX_RIPPLES`](crate::MAX_RIPPLES) ripples.
+    TooManyRipples {
+        /// The number that came.
+        count: usize,
+    },
+    /// The period of ripple `ripple` is not finite and > 0 (or is subnormal).
+    RipplePeriod {
+        /// Index of the ripple.
+        ripple: usize,
+        /// The value that came.
+        value: f64,
+    },
+    /// Ripple `ripple` has `cos` and `sin` amplitudes of different lengths.
+    HarmonicLengths {
+        /// Index of the ripple.
+        ripple: usize,
+        /// Length of `cos`.
+        cos: usize,
+        /// Length of `sin`.
+        sin: usize,
+    },
+    /// Ripple `ripple` has more than [`MAX_HARMONICS`](crate::MAX_HARMONICS) harmonics.
+    TooManyHarmonics {
+        /// Index of the ripple.
+        ripple: usize,
+        /// The number that came.
+        count: usize,
+    },
+    /// Amplitude `index` (harmonic `index + 1`) of `cos` or `sin` of ripple `ripple` is not
+    /// finite.
+    RippleCoefficient {
+        /// `cos` or `sin`.
+        field: Field,
+        /// Index of the ripple.
+        ripple: usize,
+        /// Index of the amplitude.
+        index: usize,
+        /// The value that came.
+        value: f64,
+    },
+    /// Σ|trend| + Σ|cos| + Σ|sin| of a level is not below 1: the factor could reach 0 or less.
+    LevelTooDeep {
+        /// The sum that came.
+        sum: f64,
+    },
 }
 
 /// A float as the Python package prints it: shortest round-trip digits, `nan`, `inf`, `-inf`.
@@ -427,7 +487,9 @@ impl Error {
                 write!(f, "`{field}` must be finite, got {} at ", Shown(value))?;
                 match field {
                     // A parameter vector, not a signal: its entries are not samples.
-                    Field::initial | Field::regressor => write!(f, "entry {index}"),
+                    Field::initial | Field::regressor | Field::trend => {
+                        write!(f, "entry {index}")
+                    }
                     _ => at(f, index),
                 }
             }
@@ -492,6 +554,43 @@ impl Error {
             Error::LengthMismatch { expected, got } => {
                 write!(f, "output has length {got}, expected {expected}")
             }
+            Error::TooManyRipples { count } => write!(
+                f,
+                "`ripples` must have at most {} ripples, got {count}",
+                crate::MAX_RIPPLES
+            ),
+            Error::RipplePeriod { ripple, value } => write!(
+                f,
+                "`ripples[{ripple}].period` must be finite and > 0, got {}{}",
+                Shown(value),
+                subnormal_note(value)
+            ),
+            Error::HarmonicLengths { ripple, cos, sin } => write!(
+                f,
+                "`ripples[{ripple}].cos` and `ripples[{ripple}].sin` must have the same length, \
+                 got {cos} and {sin}"
+            ),
+            Error::TooManyHarmonics { ripple, count } => write!(
+                f,
+                "`ripples[{ripple}]` must have at most {} harmonics, got {count}",
+                crate::MAX_HARMONICS
+            ),
+            Error::RippleCoefficient {
+                field,
+                ripple,
+                index,
+                value,
+            } => write!(
+                f,
+                "`ripples[{ripple}].{field}[{index}]` must be finite, got {}",
+                Shown(value)
+            ),
+            Error::LevelTooDeep { sum } => write!(
+                f,
+                "the level's amplitudes must have sum(|trend|) + sum(|cos|) + sum(|sin|) < 1 (so \
+                 that the factor stays > 0 everywhere), got {}",
+                Shown(sum)
+            ),
         }
     }
 }
@@ -630,6 +729,44 @@ impl PartialEq for Error {
                     dt: d,
                 },
             ) => same(x, x2) && same(previous, p) && same(dt, d),
+            (Error::TooManyRipples { count }, Error::TooManyRipples { count: c }) => count == c,
+            (
+                Error::RipplePeriod { ripple, value },
+                Error::RipplePeriod {
+                    ripple: r,
+                    value: v,
+                },
+            ) => ripple == r && same(value, v),
+            (
+                Error::HarmonicLengths { ripple, cos, sin },
+                Error::HarmonicLengths {
+                    ripple: r,
+                    cos: c,
+                    sin: s,
+                },
+            ) => ripple == r && cos == c && sin == s,
+            (
+                Error::TooManyHarmonics { ripple, count },
+                Error::TooManyHarmonics {
+                    ripple: r,
+                    count: c,
+                },
+            ) => ripple == r && count == c,
+            (
+                Error::RippleCoefficient {
+                    field,
+                    ripple,
+                    index,
+                    value,
+                },
+                Error::RippleCoefficient {
+                    field: other,
+                    ripple: r,
+                    index: i,
+                    value: v,
+                },
+            ) => field == other && ripple == r && index == i && same(value, v),
+            (Error::LevelTooDeep { sum }, Error::LevelTooDeep { sum: s }) => same(sum, s),
             (Error::Diverged { index }, Error::Diverged { index: i })
             | (Error::Overflow { index }, Error::Overflow { index: i }) => index == i,
             (

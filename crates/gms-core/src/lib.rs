@@ -10,6 +10,8 @@
 //!   enter linearly, for adaptation in the loop.
 //! - [`MassSystem`]: a mass on the friction model, driven by a force, with an optional spring
 //!   (to ground, or dragged: the stick-slip rig).
+//! - [`Level`]: a friction level that depends on the position (trend along the stroke and
+//!   periodic ripples), applied by the [`Compensator`] and by [`Params::simulate_position_level`].
 //! - [`Params`]: one validated parameter set that drives any number of channels, each a
 //!   [`State`]; [`Params::step`] and the block calls [`Params::simulate`] advance them.
 //!
@@ -33,6 +35,7 @@ mod compensator;
 mod error;
 pub mod hysteresis;
 pub mod identification;
+mod level;
 mod math;
 mod mechanics;
 mod model;
@@ -43,6 +46,7 @@ pub use compensator::{evaluation_bound, Compensator, Mode};
 pub use error::{Error, Field, InChannel, Shown};
 pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial, MIN_DELTA_RATIO};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
+pub use level::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
 pub use solver::{Solution, MAX_ITERATIONS};

@@ -8,6 +8,7 @@
 use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
+use crate::level::Level;
 use crate::math::abs_pow;
 use crate::solver::{Residual, Solution};
 use crate::stribeck::Stribeck;
@@ -194,6 +195,38 @@ impl<H: Hysteresis> Params<H> {
         })
     }
 
+    /// [`Params::simulate_position`] with a position-dependent level
+    /// (docs/model.md#position-dependent-level): each force is
+    /// `level.apply(F, x, v, sigma2)`, with vₖ the step's velocity (0 on a fresh channel). The
+    /// state evolves exactly as without the level (it only scales the output), and a flat
+    /// level gives [`Params::simulate_position`]'s forces bit for bit. All or nothing.
+    pub fn simulate_position_level(
+        &self,
+        state: &mut State<H::Memory>,
+        x: &[f64],
+        dt: f64,
+        scheme: Scheme,
+        level: &Level,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        check_block(x, Field::x, dt, out)?;
+        run_block(state, x, out, |state, x| {
+            let v = position_velocity(state, x, dt)?;
+            let force = level.apply(
+                self.advance_position(state, x, dt, scheme)?,
+                x,
+                v,
+                self.sigma2,
+            );
+            // run_block puts the state back on this error, like on any other.
+            if force.is_finite() {
+                Ok(force)
+            } else {
+                Err(Error::Diverged { index: 0 })
+            }
+        })
+    }
+
     /// [`Params::simulate_position`], also writing the deflection z after every sample into
     /// `z` (same length): the state the hysteresis elements are driven by, for analysis.
     ///
@@ -286,20 +319,28 @@ impl<H: Hysteresis> Params<H> {
         dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
-        let v = match state.last_position {
-            Some(previous) => (x - previous) / dt,
-            None => 0.0,
-        };
-        if !v.is_finite() {
-            return Err(Error::NotFinite {
-                field: Field::v,
-                index: 0,
-                value: v,
-            });
-        }
+        let v = position_velocity(state, x, dt)?;
         let force = self.advance(state, v, dt, scheme)?;
         state.last_position = Some(x);
         Ok(force)
+    }
+}
+
+/// The velocity of a position step: (x − `x_prev`)/dt, and 0 on a fresh channel.
+#[inline]
+pub(crate) fn position_velocity<M>(state: &State<M>, x: f64, dt: f64) -> Result<f64, Error> {
+    let v = match state.last_position {
+        Some(previous) => (x - previous) / dt,
+        None => 0.0,
+    };
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::NotFinite {
+            field: Field::v,
+            index: 0,
+            value: v,
+        })
     }
 }
 

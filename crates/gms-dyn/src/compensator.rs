@@ -4,7 +4,7 @@
 //! Creating one allocates once (its size depends on the number of elements); stepping, swapping
 //! parameters and resetting never allocate.
 
-use gms_core::{Hysteresis, Mode, Params, State};
+use gms_core::{Hysteresis, Level, Mode, Params, State};
 
 use crate::channels::Memory;
 use crate::error::Error;
@@ -30,6 +30,10 @@ pub struct Compensator {
 /// gms-core's compensator for one hysteresis type, behind a trait object.
 trait Axis: Send + Sync {
     fn step(&mut self, input: f64) -> Result<f64, gms_core::Error>;
+    fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error>;
+    fn position(&self) -> f64;
+    fn level(&self) -> Level;
+    fn set_level(&mut self, level: &Level);
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error>;
     fn reset(&mut self);
     fn output(&self) -> f64;
@@ -46,6 +50,22 @@ where
     #[inline]
     fn step(&mut self, input: f64) -> Result<f64, gms_core::Error> {
         gms_core::Compensator::step(self, input)
+    }
+
+    fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error> {
+        gms_core::Compensator::set_position(self, x)
+    }
+
+    fn position(&self) -> f64 {
+        gms_core::Compensator::position(self)
+    }
+
+    fn level(&self) -> Level {
+        *gms_core::Compensator::level(self)
+    }
+
+    fn set_level(&mut self, level: &Level) {
+        gms_core::Compensator::set_level(self, *level);
     }
 
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error> {
@@ -96,11 +116,13 @@ where
     }
 }
 
-fn boxed<H>(params: Params<H>, dt: f64, mode: Mode) -> Result<Box<dyn Axis>, Error>
+fn boxed<H>(params: Params<H>, dt: f64, mode: Mode, level: &Level) -> Result<Box<dyn Axis>, Error>
 where
     H: InParameterSet<Memory: Memory> + Hysteresis + Send + Sync + 'static,
 {
-    Ok(Box::new(gms_core::Compensator::new(params, dt, mode)?))
+    Ok(Box::new(
+        gms_core::Compensator::new(params, dt, mode)?.with_level(*level),
+    ))
 }
 
 impl Compensator {
@@ -109,9 +131,48 @@ impl Compensator {
     /// # Errors
     /// `dt` not finite and > 0.
     pub fn new(params: &ParameterSet, dt: f64, mode: Mode) -> Result<Self, Error> {
+        Self::with_level(params, dt, mode, &Level::none())
+    }
+
+    /// A compensator at rest with a position-dependent level (docs/model.md#position-dependent-level):
+    /// its output is factor(x)·(F − σ2·v) + σ2·v. In feedforward mode give the start position
+    /// with [`Compensator::set_position`].
+    ///
+    /// # Errors
+    /// `dt` not finite and > 0.
+    pub fn with_level(
+        params: &ParameterSet,
+        dt: f64,
+        mode: Mode,
+        level: &Level,
+    ) -> Result<Self, Error> {
         Ok(Self {
-            axis: with_params!(*params, params => boxed(params, dt, mode)?),
+            axis: with_params!(*params, params => boxed(params, dt, mode, level)?),
         })
+    }
+
+    /// Sets the position from which feedforward mode integrates the desired velocity (observer
+    /// mode takes the position from its input).
+    ///
+    /// # Errors
+    /// A non-finite `x`; nothing changes.
+    pub fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error> {
+        self.axis.set_position(x)
+    }
+
+    /// The feedforward position: the start position plus the desired velocities integrated since.
+    pub fn position(&self) -> f64 {
+        self.axis.position()
+    }
+
+    /// Replaces the position-dependent level between two samples; the model state carries over.
+    pub fn set_level(&mut self, level: &Level) {
+        self.axis.set_level(level);
+    }
+
+    /// The position-dependent level ([`Level::none`] when none was given).
+    pub fn level(&self) -> Level {
+        self.axis.level()
     }
 
     /// The friction force to add to the command for this sample; `input` is the desired

@@ -173,7 +173,13 @@ fn core_kind(error: &gms_core::Error) -> ErrorKind {
         | Core::StiffnessOverflow { .. }
         | Core::StiffnessSumOverflow
         | Core::DeltaTooNarrow { .. }
-        | Core::TraceBelowInitial { .. } => ErrorKind::Parameter,
+        | Core::TraceBelowInitial { .. }
+        | Core::TooManyRipples { .. }
+        | Core::RipplePeriod { .. }
+        | Core::HarmonicLengths { .. }
+        | Core::TooManyHarmonics { .. }
+        | Core::RippleCoefficient { .. }
+        | Core::LevelTooDeep { .. } => ErrorKind::Parameter,
         Core::VelocityNotFinite { .. }
         | Core::Overflow { .. }
         | Core::InputsOverflow { .. }

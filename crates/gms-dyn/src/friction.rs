@@ -1,7 +1,7 @@
 //! Channels of the friction model that share one validated parameter set, whatever its number
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
-use gms_core::{Hysteresis, Params, Scheme, State};
+use gms_core::{Hysteresis, Level, Params, Scheme, State};
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
@@ -31,7 +31,14 @@ trait FrictionChannels: Send + Sync {
     fn elements(&self) -> usize;
     fn scheme(&self) -> Scheme;
     fn step(&mut self, channel: usize, input: f64, dt: f64, kind: Input) -> Result<f64, Error>;
-    fn run(&mut self, input: &[f64], dt: f64, kind: Input, out: &mut [f64]) -> Result<(), Error>;
+    fn run(
+        &mut self,
+        input: &[f64],
+        dt: f64,
+        kind: Input,
+        level: &Level,
+        out: &mut [f64],
+    ) -> Result<(), Error>;
     fn trace_position(
         &mut self,
         channel: usize,
@@ -89,7 +96,14 @@ where
         Ok(result?)
     }
 
-    fn run(&mut self, input: &[f64], dt: f64, kind: Input, out: &mut [f64]) -> Result<(), Error> {
+    fn run(
+        &mut self,
+        input: &[f64],
+        dt: f64,
+        kind: Input,
+        level: &Level,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
         let samples = samples_per_channel(input.len(), self.states.len())?;
         check_output(input.len(), out.len())?;
         let (params, scheme) = (&self.params, self.scheme);
@@ -100,7 +114,10 @@ where
         // gms-core checks dt and scans each row for finiteness before it steps: the one check.
         let run_one = |state: &mut State<H::Memory>, input: &[f64], out: &mut [f64]| match kind {
             Input::Velocity => params.simulate(state, input, dt, scheme, out),
-            Input::Position => params.simulate_position(state, input, dt, scheme, out),
+            Input::Position if level.is_flat() => {
+                params.simulate_position(state, input, dt, scheme, out)
+            }
+            Input::Position => params.simulate_position_level(state, input, dt, scheme, level, out),
         };
         // Only the first failing channel is kept: a result per channel would be one more
         // allocation the size of the bank, and an infallible one.
@@ -262,7 +279,23 @@ impl FrictionBank {
         kind: Input,
         out: &mut [f64],
     ) -> Result<(), Error> {
-        self.channels.run(input, dt, kind, out)
+        self.channels.run(input, dt, kind, &Level::none(), out)
+    }
+
+    /// [`FrictionBank::run`] on positions `x` with a position-dependent level
+    /// (docs/model.md#position-dependent-level): each force is factor(x)·(F − σ2·v) + σ2·v. The
+    /// states evolve as without the level; a flat level gives the plain forces bit for bit.
+    ///
+    /// # Errors
+    /// As [`FrictionBank::run`]; a force that the level makes non-finite is a divergence.
+    pub fn run_position_level(
+        &mut self,
+        x: &[f64],
+        dt: f64,
+        level: &Level,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        self.channels.run(x, dt, Input::Position, level, out)
     }
 
     /// Runs `channel` over positions `x`, writing the forces into `out` and the deflection z

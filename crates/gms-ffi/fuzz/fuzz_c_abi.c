@@ -1,6 +1,7 @@
 /* libFuzzer target for the C ABI of leuven-rt (include/leuven_rt.h).
  *
- * The input is decoded into a sequence of calls on up to four compensators: create (with
+ * The whole input is first handed to create_from_json as the text of a parameter or model file
+ * (in both modes). It is then decoded into a sequence of calls on up to four compensators: create (with
  * parameter structs built from a physical base and mutated with random doubles, random W and
  * Delta arrays of exactly `elements` heap doubles, or null pointers), step with random doubles
  * (NaN, inf, huge, tiny), set_params, reset, output, destroy, and calls with null arguments.
@@ -143,7 +144,64 @@ static void parameters(reader *r, leuven_rt_params *p, double **w, double **delt
     }
 }
 
+/* The input as the text of a parameter file or a versioned model file. */
+static void from_json(const uint8_t *data, size_t size, int32_t mode) {
+    leuven_rt_compensator *sentinel = (leuven_rt_compensator *)&mode; /* never a handle */
+    leuven_rt_compensator *made = sentinel;
+    leuven_rt_error error = {NULL, 12345};
+    leuven_rt_status status =
+        leuven_rt_compensator_create_from_json((const char *)data, size, 1e-3, mode, &made, &error);
+    check(error.field != NULL, "create_from_json writes the error");
+    if (status != LEUVEN_RT_OK) {
+        check(made == sentinel, "a refused create_from_json writes no handle");
+        return;
+    }
+    check(made != NULL && made != sentinel, "create_from_json OK gives a handle");
+    check(output_of(made) == 0.0, "a new compensator outputs 0");
+    check(leuven_rt_compensator_set_position(made, 1e-3) == LEUVEN_RT_OK, "a finite position");
+    for (int k = 0; k < 8; k++) {
+        double force = NAN;
+        if (leuven_rt_compensator_step(made, 1e-3 * sin(0.5 * k), &force) == LEUVEN_RT_OK) {
+            check(isfinite(force), "an OK step from a file gives a finite force");
+        }
+    }
+    leuven_rt_compensator_destroy(made);
+}
+
+/* A level from the input: a valid base mutated by random doubles and counts (the arrays are
+ * heap blocks of exactly the counts given, so that ASan catches reads past them). */
+static void set_level(reader *r, leuven_rt_compensator *c) {
+    double *amplitudes[4] = {NULL, NULL, NULL, NULL};
+    leuven_rt_ripple ripples[2];
+    for (int i = 0; i < 2; i++) {
+        size_t harmonics = (size_t)(byte(r) % 10);
+        amplitudes[2 * i] = malloc((harmonics ? harmonics : 1) * sizeof(double));
+        amplitudes[2 * i + 1] = malloc((harmonics ? harmonics : 1) * sizeof(double));
+        for (size_t k = 0; k < harmonics; k++) {
+            amplitudes[2 * i][k] = byte(r) < 240 ? 0.01 : number(r);
+            amplitudes[2 * i + 1][k] = byte(r) < 240 ? -0.01 : number(r);
+        }
+        ripples[i] = (leuven_rt_ripple){byte(r) < 200 ? 0.004 : number(r), amplitudes[2 * i],
+                                        amplitudes[2 * i + 1], harmonics};
+    }
+    leuven_rt_level level = {byte(r) < 200 ? 0.0 : number(r), byte(r) < 200 ? 0.01 : number(r),
+                             {byte(r) < 200 ? 0.05 : number(r), byte(r) < 200 ? -0.02 : number(r)},
+                             ripples, (size_t)(byte(r) % 3)};
+    leuven_rt_error error = {NULL, 0};
+    double before = c ? output_of(c) : 0.0;
+    leuven_rt_status status = leuven_rt_compensator_set_level(c, byte(r) < 250 ? &level : NULL, &error);
+    if (c == NULL) {
+        check(status == LEUVEN_RT_INVALID_POINTER, "a null handle is refused");
+    } else {
+        check(output_of(c) == before, "set_level leaves the output");
+        if (status == LEUVEN_RT_INVALID_PARAMETER) check(error.field[0] != 0, "a level error names a field");
+    }
+    for (int i = 0; i < 4; i++) free(amplitudes[i]);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    from_json(data, size, 0);
+    from_json(data, size, 1);
     reader r = {data, size};
     leuven_rt_compensator *slots[SLOTS] = {NULL};
     for (int call = 0; call < MAX_CALLS && r.size > 0; call++) {
@@ -230,8 +288,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             check(leuven_rt_compensator_create(NULL, 1e-3, 0, NULL, NULL) != LEUVEN_RT_OK,
                   "create from null");
             break;
-        case 7: /* messages */
+        case 7: /* messages, levels and positions */
             check(leuven_rt_status_message((int32_t)raw_bits(&r)) != NULL, "a message");
+            if (byte(&r) % 2) {
+                set_level(&r, *slot);
+            } else {
+                double x = number(&r);
+                leuven_rt_status status = leuven_rt_compensator_set_position(*slot, x);
+                check(*slot == NULL ? status == LEUVEN_RT_INVALID_POINTER
+                                    : (status == LEUVEN_RT_OK) == (isfinite(x) != 0),
+                      "set_position refuses only null and non-finite");
+            }
             break;
         default: { /* a run of steps */
             if (*slot == NULL) break;

@@ -19,6 +19,12 @@
 // The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 #define LEUVEN_RT_MAX_ELEMENTS 32
 
+// The most ripples `leuven_rt_level.ripple_count` may have.
+#define LEUVEN_RT_MAX_RIPPLES 2
+
+// The most harmonics `leuven_rt_ripple.harmonics` may have.
+#define LEUVEN_RT_MAX_HARMONICS 8
+
 // The size of `leuven_rt_error.message`, its terminating NUL included.
 #define LEUVEN_RT_ERROR_MESSAGE_SIZE 160
 
@@ -55,7 +61,8 @@ enum leuven_rt_status
   // The step produced a non-finite force (inputs far outside SI magnitudes). The output
   // holds the last good force.
   LEUVEN_RT_STEP_FAILED = 7,
-  // A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
+  // object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
   // has an unknown, missing or mistyped key; the error message names the key or the cause.
   LEUVEN_RT_INVALID_FILE = 8,
 };
@@ -138,6 +145,51 @@ typedef struct leuven_rt_error {
   char message[LEUVEN_RT_ERROR_MESSAGE_SIZE];
 } leuven_rt_error;
 
+// One periodic part of a position-dependent level (docs/model.md#position-dependent-level):
+// the period and `harmonics` relative amplitudes in each of `cos` and `sin` (harmonic k at
+// index k − 1).
+//
+// Rules (`LEUVEN_RT_INVALID_PARAMETER`, with the member's name in `leuven_rt_error.field` and
+// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and not subnormal;
+// `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every amplitude finite. `cos` and `sin` may
+// be null when `harmonics` is 0.
+typedef struct leuven_rt_ripple {
+  // The period [m or rad].
+  double period;
+  // Amplitudes of cos(2πk·x/period), `harmonics` values (relative to the friction level).
+  const double *cos;
+  // Amplitudes of sin(2πk·x/period), `harmonics` values.
+  const double *sin;
+  // Number of harmonics, 0 to `LEUVEN_RT_MAX_HARMONICS`.
+  size_t harmonics;
+} leuven_rt_ripple;
+
+// A friction level that depends on the position (docs/model.md#position-dependent-level):
+// the contact friction is scaled by
+// factor(x) = 1 + t1·p + t2·(1.5·p² − 0.5) + Σ ripples, with p = clip((x − middle) / half stroke, −1, 1),
+// so that the output is factor(x)·(F − sigma2·v) + sigma2·v.
+//
+// Rules (`LEUVEN_RT_INVALID_PARAMETER`, the member's name in `leuven_rt_error.field`):
+// `middle` and `trend` finite (`index` says which `trend` entry); `half_stroke` finite, > 0
+// and not subnormal; `ripple_count` at most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in
+// `leuven_rt_ripple`; and |t1| + |t2| + the sum of every |amplitude| below 1, so that the factor
+// is positive everywhere (field "level"). `ripples` may be null when `ripple_count` is 0. A
+// level of zeros with no ripples is the flat level: the plain model's output, bit for bit.
+//
+// Ownership: copied while the call runs.
+typedef struct leuven_rt_level {
+  // Middle of the stroke [m or rad].
+  double middle;
+  // Half the stroke [m or rad], > 0.
+  double half_stroke;
+  // Legendre coefficients (t1, t2) of the trend along the stroke.
+  double trend[2];
+  // The ripples, `ripple_count` of them.
+  const struct leuven_rt_ripple *ripples;
+  // Number of ripples, 0 to `LEUVEN_RT_MAX_RIPPLES`.
+  size_t ripple_count;
+} leuven_rt_level;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -160,8 +212,18 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               struct leuven_rt_error *error);
 
 // Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
-// and `leuven_rt.Params.save` write; keys of docs/parameters.md): `len` bytes at `json`, UTF-8,
-// no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
+// and `leuven_rt.Params.save` write; keys of docs/parameters.md) or of a versioned model file
+// (docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
+// Otherwise as `leuven_rt_compensator_create`.
+//
+// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
+// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
+// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
+// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
+// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
+// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
+// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
+// start position (`leuven_rt_compensator_set_position`).
 //
 // Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
 // type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
@@ -228,6 +290,30 @@ leuven_rt_status leuven_rt_compensator_set_params(struct leuven_rt_compensator *
 // # Safety
 // `compensator` must be null or a live handle.
 leuven_rt_status leuven_rt_compensator_reset(struct leuven_rt_compensator *compensator);
+
+// Gives the compensator a position-dependent level (see `leuven_rt_level`), replacing the one it
+// had; the model state carries over and the next step's output uses the new level. In
+// feedforward mode the level is evaluated at the position integrated from the desired
+// velocity: give the axis's start position with `leuven_rt_compensator_set_position`.
+// Does not allocate; `error`, if not null, is written on every return.
+//
+// # Safety
+// `compensator` null or live; `level` null or valid, with `level->ripples` null or pointing to
+// `level->ripple_count` ripples, and each ripple's `cos` and `sin` null or pointing to its
+// `harmonics` doubles; `error` null or valid.
+leuven_rt_status leuven_rt_compensator_set_level(struct leuven_rt_compensator *compensator,
+                                                 const struct leuven_rt_level *level,
+                                                 struct leuven_rt_error *error);
+
+// Sets the position [m or rad] from which feedforward mode integrates the desired velocity
+// (x ← x + v·dt each step) to evaluate the level; 0 until set. Observer mode takes the
+// position from its input and does not read it. A non-finite `x` gives
+// `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
+//
+// # Safety
+// `compensator` must be null or a live handle.
+leuven_rt_status leuven_rt_compensator_set_position(struct leuven_rt_compensator *compensator,
+                                                    double x);
 
 // The last force returned by a successful step (0 before the first), written to `*force`.
 //

@@ -45,13 +45,26 @@ use core::fmt::{self, Write as _};
 use serde::Deserialize;
 
 use gms_core::{Error, Field, Mode};
-use gms_dyn::{Compensator, HysteresisKind, RawElements, RawParams};
+use gms_dyn::{
+    Compensator, HysteresisKind, Level, RawElements, RawParams, RippleTerms, MAX_HARMONICS,
+    MAX_RIPPLES,
+};
 
 /// The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
 
 // The header spells the number out; it must be gms-dyn's.
 const _: () = assert!(LEUVEN_RT_MAX_ELEMENTS == gms_dyn::MAX_ELEMENTS);
+
+/// The most ripples `leuven_rt_level.ripple_count` may have.
+pub const LEUVEN_RT_MAX_RIPPLES: usize = 2;
+
+/// The most harmonics `leuven_rt_ripple.harmonics` may have.
+pub const LEUVEN_RT_MAX_HARMONICS: usize = 8;
+
+// The header spells the numbers out; they must be gms-core's.
+const _: () = assert!(LEUVEN_RT_MAX_RIPPLES == MAX_RIPPLES);
+const _: () = assert!(LEUVEN_RT_MAX_HARMONICS == MAX_HARMONICS);
 
 /// The size of `leuven_rt_error.message`, its terminating NUL included.
 pub const LEUVEN_RT_ERROR_MESSAGE_SIZE: usize = 160;
@@ -87,7 +100,8 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
-    /// A parameter file (`_from_json`, `_from_file`) cannot be read, is not a JSON object, or
+    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
+    /// object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
     /// has an unknown, missing or mistyped key; the error message names the key or the cause.
     LEUVEN_RT_INVALID_FILE = 8,
 }
@@ -148,6 +162,55 @@ pub struct leuven_rt_params {
     pub elements: usize,
 }
 
+/// One periodic part of a position-dependent level (docs/model.md#position-dependent-level):
+/// the period and `harmonics` relative amplitudes in each of `cos` and `sin` (harmonic k at
+/// index k − 1).
+///
+/// Rules (`LEUVEN_RT_INVALID_PARAMETER`, with the member's name in `leuven_rt_error.field` and
+/// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and not subnormal;
+/// `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every amplitude finite. `cos` and `sin` may
+/// be null when `harmonics` is 0.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct leuven_rt_ripple {
+    /// The period [m or rad].
+    pub period: f64,
+    /// Amplitudes of cos(2πk·x/period), `harmonics` values (relative to the friction level).
+    pub cos: *const f64,
+    /// Amplitudes of sin(2πk·x/period), `harmonics` values.
+    pub sin: *const f64,
+    /// Number of harmonics, 0 to `LEUVEN_RT_MAX_HARMONICS`.
+    pub harmonics: usize,
+}
+
+/// A friction level that depends on the position (docs/model.md#position-dependent-level):
+/// the contact friction is scaled by
+/// factor(x) = 1 + t1·p + t2·(1.5·p² − 0.5) + Σ ripples, with p = clip((x − middle) / half stroke, −1, 1),
+/// so that the output is factor(x)·(F − sigma2·v) + sigma2·v.
+///
+/// Rules (`LEUVEN_RT_INVALID_PARAMETER`, the member's name in `leuven_rt_error.field`):
+/// `middle` and `trend` finite (`index` says which `trend` entry); `half_stroke` finite, > 0
+/// and not subnormal; `ripple_count` at most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in
+/// `leuven_rt_ripple`; and |t1| + |t2| + the sum of every |amplitude| below 1, so that the factor
+/// is positive everywhere (field "level"). `ripples` may be null when `ripple_count` is 0. A
+/// level of zeros with no ripples is the flat level: the plain model's output, bit for bit.
+///
+/// Ownership: copied while the call runs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct leuven_rt_level {
+    /// Middle of the stroke [m or rad].
+    pub middle: f64,
+    /// Half the stroke [m or rad], > 0.
+    pub half_stroke: f64,
+    /// Legendre coefficients (t1, t2) of the trend along the stroke.
+    pub trend: [f64; 2],
+    /// The ripples, `ripple_count` of them.
+    pub ripples: *const leuven_rt_ripple,
+    /// Number of ripples, 0 to `LEUVEN_RT_MAX_RIPPLES`.
+    pub ripple_count: usize,
+}
+
 /// Why a call that takes one was refused. Every function with an `error` argument writes all of
 /// it on every return when `error` is not null, whatever the status: on `LEUVEN_RT_OK`,
 /// `field` and `message` are "" and `index` is 0.
@@ -187,7 +250,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
-        8 => c"the parameter file cannot be read or has an unknown, missing or mistyped key",
+        8 => c"the parameter or model file cannot be read, or has another format or version, or an unknown, missing or mistyped key",
         _ => c"unknown status",
     };
     message.as_ptr()
@@ -215,14 +278,24 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
         let mode = checked_mode(mode)?;
         // SAFETY: as above, for `params` and the arrays it points to.
         let raw = unsafe { raw_params(params) }.ok_or_else(|| Refusal::pointer("params"))?;
-        build(&raw, dt, mode, out)
+        build(&raw, dt, mode, &Level::none(), out)
     });
     finish(created, error)
 }
 
 /// Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
-/// and `leuven_rt.Params.save` write; keys of docs/parameters.md): `len` bytes at `json`, UTF-8,
-/// no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
+/// and `leuven_rt.Params.save` write; keys of docs/parameters.md) or of a versioned model file
+/// (docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
+/// Otherwise as `leuven_rt_compensator_create`.
+///
+/// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
+/// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
+/// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
+/// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
+/// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
+/// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
+/// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
+/// start position (`leuven_rt_compensator_set_position`).
 ///
 /// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
 /// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
@@ -396,6 +469,57 @@ pub unsafe extern "C" fn leuven_rt_compensator_reset(
     }
 }
 
+/// Gives the compensator a position-dependent level (see `leuven_rt_level`), replacing the one it
+/// had; the model state carries over and the next step's output uses the new level. In
+/// feedforward mode the level is evaluated at the position integrated from the desired
+/// velocity: give the axis's start position with `leuven_rt_compensator_set_position`.
+/// Does not allocate; `error`, if not null, is written on every return.
+///
+/// # Safety
+/// `compensator` null or live; `level` null or valid, with `level->ripples` null or pointing to
+/// `level->ripple_count` ripples, and each ripple's `cos` and `sin` null or pointing to its
+/// `harmonics` doubles; `error` null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_set_level(
+    compensator: *mut leuven_rt_compensator,
+    level: *const leuven_rt_level,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, error) = unsafe { (checked_mut(compensator), checked_mut(error)) };
+    let set = compensator
+        .ok_or_else(|| Refusal::pointer("compensator"))
+        .and_then(|compensator| {
+            // SAFETY: as above, for `level` and the arrays it points to.
+            let level = unsafe { c_level(level) }?;
+            compensator.compensator.set_level(&level);
+            Ok(())
+        });
+    finish(set, error)
+}
+
+/// Sets the position [m or rad] from which feedforward mode integrates the desired velocity
+/// (x ← x + v·dt each step) to evaluate the level; 0 until set. Observer mode takes the
+/// position from its input and does not read it. A non-finite `x` gives
+/// `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
+///
+/// # Safety
+/// `compensator` must be null or a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_set_position(
+    compensator: *mut leuven_rt_compensator,
+    x: f64,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or a valid pointer (the function's contract).
+    match unsafe { checked_mut(compensator) } {
+        Some(compensator) => match compensator.compensator.set_position(x) {
+            Ok(()) => LEUVEN_RT_OK,
+            Err(_) => LEUVEN_RT_NOT_FINITE_INPUT,
+        },
+        None => LEUVEN_RT_INVALID_POINTER,
+    }
+}
+
 /// The last force returned by a successful step (0 before the first), written to `*force`.
 ///
 /// # Safety
@@ -459,6 +583,54 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
     // SAFETY: non-null and aligned here; `count` valid doubles by the caller's contract (the
     // cap only shortens the slice); count·8 bytes is far below isize::MAX.
     Some(unsafe { core::slice::from_raw_parts(pointer, count) })
+}
+
+/// The caller's level, validated by gms-core; a null or misaligned pointer (the level, its
+/// ripples, or a ripple's amplitudes) is refused.
+///
+/// Counts beyond the maxima are refused before any array is read past them.
+///
+/// # Safety
+/// As [`checked`] for `level`; its `ripples` must point to `ripple_count` ripples and each
+/// ripple's `cos` and `sin` to `harmonics` doubles (read only up to the maxima + 1).
+unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
+    // SAFETY: passed on from the caller's contract.
+    let level = unsafe { checked(level) }.ok_or_else(|| Refusal::pointer("level"))?;
+    let count = level.ripple_count.min(MAX_RIPPLES + 1);
+    let c_ripples: &[leuven_rt_ripple] = if count == 0 {
+        &[]
+    } else if level.ripples.is_null() || !level.ripples.is_aligned() {
+        return Err(Refusal::pointer("level->ripples"));
+    } else {
+        // SAFETY: non-null and aligned; `ripple_count` valid ripples by the caller's contract,
+        // of which at most MAX_RIPPLES + 1 are read.
+        unsafe { core::slice::from_raw_parts(level.ripples, count) }
+    };
+    let mut terms = [RippleTerms {
+        period: 1.0,
+        cos: &[],
+        sin: &[],
+    }; MAX_RIPPLES + 1];
+    for (ripple, slot) in c_ripples.iter().zip(terms.iter_mut()) {
+        let harmonics = ripple.harmonics.min(MAX_HARMONICS + 1);
+        // SAFETY: passed on from the caller's contract.
+        let (cos, sin) = unsafe { (array(ripple.cos, harmonics), array(ripple.sin, harmonics)) };
+        let (Some(cos), Some(sin)) = (cos, sin) else {
+            return Err(Refusal::pointer("level->ripples[i].cos or .sin"));
+        };
+        *slot = RippleTerms {
+            period: ripple.period,
+            cos,
+            sin,
+        };
+    }
+    Level::new(
+        level.middle,
+        level.half_stroke,
+        level.trend,
+        &terms[..c_ripples.len()],
+    )
+    .map_err(|reason| Refusal::from_dyn(reason.into()))
 }
 
 /// The caller's parameters as plain values, or `None` for a null or misaligned pointer.
@@ -549,6 +721,28 @@ impl Refusal {
                 | Error::Negative { field, .. }
                 | Error::StaticBelowCoulomb { field, .. },
             ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), 0),
+            Refused::Core(Error::NotFiniteValue {
+                field: Field::middle,
+                ..
+            }) => (LEUVEN_RT_INVALID_PARAMETER, c"middle", 0),
+            Refused::Core(Error::NotFinite {
+                field: Field::trend,
+                index,
+                ..
+            }) => (LEUVEN_RT_INVALID_PARAMETER, c"trend", index),
+            Refused::Core(Error::TooManyRipples { .. }) => {
+                (LEUVEN_RT_INVALID_PARAMETER, c"ripple_count", 0)
+            }
+            Refused::Core(Error::RipplePeriod { ripple, .. }) => {
+                (LEUVEN_RT_INVALID_PARAMETER, c"period", ripple)
+            }
+            Refused::Core(
+                Error::TooManyHarmonics { ripple, .. } | Error::HarmonicLengths { ripple, .. },
+            ) => (LEUVEN_RT_INVALID_PARAMETER, c"harmonics", ripple),
+            Refused::Core(Error::RippleCoefficient { field, ripple, .. }) => {
+                (LEUVEN_RT_INVALID_PARAMETER, field_name(field), ripple)
+            }
+            Refused::Core(Error::LevelTooDeep { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"level", 0),
             Refused::Core(Error::ForceSumOverflow { index, .. }) => {
                 (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
             }
@@ -657,11 +851,12 @@ fn build(
     raw: &RawParams<'_>,
     dt: f64,
     mode: Mode,
+    level: &Level,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
     let compensator = raw
         .validate()
-        .and_then(|set| Compensator::new(&set, dt, mode))
+        .and_then(|set| Compensator::with_level(&set, dt, mode, level))
         .map_err(Refusal::from_dyn)?;
     *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
     Ok(())
@@ -720,21 +915,174 @@ fn read_parameter_file(path: &std::path::Path) -> Result<Vec<u8>, Refusal> {
     Ok(text)
 }
 
-/// Parses the text of a parameter file and builds the compensator from it.
+/// The `format` of a versioned model file (docs/parameters.md#model-file).
+const MODEL_FORMAT: &str = "leuven-rt model";
+
+/// The one `version` of the model file this library reads.
+const MODEL_VERSION: u64 = 1;
+
+/// A versioned model file (docs/parameters.md#model-file): the friction parameters, an optional
+/// position-dependent level, measurement terms (checked, not used) and a report (ignored).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFile {
+    #[allow(dead_code)] // checked by the probe before this is read
+    format: String,
+    #[allow(dead_code)] // checked by the probe before this is read
+    version: u64,
+    units: Units,
+    friction: ParamsFile,
+    #[serde(default)]
+    level: Option<LevelFile>,
+    #[serde(default)]
+    measurement: Option<MeasurementFile>,
+    #[serde(default)]
+    #[allow(dead_code)]
+    // read so that the key is allowed; its content is not the compensator's
+    report: Option<serde::de::IgnoredAny>,
+}
+
+/// What the positions are: informational for the compensator.
+#[derive(Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum Units {
+    Linear,
+    Rotary,
+}
+
+/// The `level` object of a model file: `leuven_rt.PositionLevel`'s fields, with its defaults.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LevelFile {
+    #[serde(default)]
+    middle: f64,
+    #[serde(default = "one")]
+    half_stroke: f64,
+    #[serde(default)]
+    trend: [f64; 2],
+    #[serde(default)]
+    ripples: Vec<RippleFile>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// One ripple of a model file's level.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RippleFile {
+    period: f64,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+}
+
+/// The measurement terms of a model file: a force offset and an inertia that the log's force
+/// contained; not friction, so the compensator leaves them out.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeasurementFile {
+    #[serde(default)]
+    offset: f64,
+    #[serde(default)]
+    inertia: f64,
+}
+
+/// Whether a JSON object has a `format` key (a model file) or not (a parameter file).
+#[derive(Deserialize)]
+struct Probe {
+    #[serde(default)]
+    format: Option<serde_json::Value>,
+    #[serde(default)]
+    version: Option<serde_json::Value>,
+}
+
+/// A refused file: `LEUVEN_RT_INVALID_FILE` with the cause.
+fn invalid_file(message: fmt::Arguments<'_>) -> Refusal {
+    Refusal::new(LEUVEN_RT_INVALID_FILE, c"", 0, message)
+}
+
+/// Parses the text of a parameter file or of a versioned model file (an object with a
+/// `format` key) and builds the compensator from it.
 fn from_json_text(
     text: &[u8],
     dt: f64,
     mode: Mode,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
-    let file: ParamsFile = serde_json::from_slice(text).map_err(|reason| {
-        Refusal::new(
-            LEUVEN_RT_INVALID_FILE,
-            c"",
-            0,
-            format_args!("parameter file: {reason}"),
-        )
-    })?;
+    // A first look at `format` and `version` only, so that a file of another version is
+    // called that (not refused for keys this version does not know); the file is then read
+    // once more as what it is, so that serde's messages keep their line and column and
+    // duplicate keys stay refused.
+    let probe = serde_json::from_slice::<Probe>(text).ok();
+    let Some(Probe {
+        format: Some(format),
+        version,
+    }) = probe
+    else {
+        let file: ParamsFile = serde_json::from_slice(text)
+            .map_err(|reason| invalid_file(format_args!("parameter file: {reason}")))?;
+        return from_params_file(&file, dt, mode, &Level::none(), out);
+    };
+    if format.as_str() != Some(MODEL_FORMAT) {
+        return Err(invalid_file(format_args!(
+            "model file: `format` must be {MODEL_FORMAT:?}, got {format}"
+        )));
+    }
+    match version {
+        Some(version) if version.as_u64() == Some(MODEL_VERSION) => {}
+        Some(version) => {
+            return Err(invalid_file(format_args!(
+                "model file: `version` must be {MODEL_VERSION}, got {version}"
+            )))
+        }
+        None => {
+            return Err(invalid_file(format_args!(
+                "model file: `version` must be {MODEL_VERSION}, got none"
+            )))
+        }
+    }
+    let file: ModelFile = serde_json::from_slice(text)
+        .map_err(|reason| invalid_file(format_args!("model file: {reason}")))?;
+    // Informational: positions in metres or radians read the same to the compensator.
+    let (Units::Linear | Units::Rotary) = file.units;
+    if let Some(measurement) = &file.measurement {
+        for (key, value) in [
+            ("offset", measurement.offset),
+            ("inertia", measurement.inertia),
+        ] {
+            // serde_json refuses numbers beyond f64; this keeps the rule explicit.
+            if !value.is_finite() {
+                return Err(invalid_file(format_args!(
+                    "model file: `measurement.{key}` must be finite, got {value}"
+                )));
+            }
+        }
+    }
+    let level = match &file.level {
+        None => Level::none(),
+        Some(level) => {
+            let mut terms = Vec::with_capacity(level.ripples.len());
+            terms.extend(level.ripples.iter().map(|ripple| RippleTerms {
+                period: ripple.period,
+                cos: &ripple.cos,
+                sin: &ripple.sin,
+            }));
+            Level::new(level.middle, level.half_stroke, level.trend, &terms)
+                .map_err(|reason| Refusal::from_dyn(reason.into()))?
+        }
+    };
+    from_params_file(&file.friction, dt, mode, &level, out)
+}
+
+/// Builds the compensator from the keys of a parameter file and a level.
+fn from_params_file(
+    file: &ParamsFile,
+    dt: f64,
+    mode: Mode,
+    level: &Level,
+    out: &mut *mut leuven_rt_compensator,
+) -> Result<(), Refusal> {
     let elements = match (&file.W, &file.Delta) {
         (Some(w), Some(delta)) => Some(RawElements { w, delta }),
         (None, None) => None,
@@ -768,7 +1116,7 @@ fn from_json_text(
         sigma0: file.sigma0,
         elements,
     };
-    build(&raw, dt, mode, out)
+    build(&raw, dt, mode, level, out)
 }
 
 /// The member of `leuven_rt_params` that holds `field`.
@@ -787,6 +1135,11 @@ fn field_name(field: Field) -> &'static CStr {
         Field::Fc_neg => c"Fc_neg",
         Field::Fs_neg => c"Fs_neg",
         Field::dt => c"dt",
+        Field::middle => c"middle",
+        Field::half_stroke => c"half_stroke",
+        Field::trend => c"trend",
+        Field::cos => c"cos",
+        Field::sin => c"sin",
         _ => c"",
     }
 }

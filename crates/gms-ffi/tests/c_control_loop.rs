@@ -8,7 +8,9 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use gms_core::{Compensator, LeuvenParams, MaxwellSlip, Mode, Params, Stribeck};
+use gms_core::{
+    Compensator, LeuvenParams, Level, MaxwellSlip, Mode, Params, RippleTerms, Stribeck,
+};
 use gms_ffi::leuven_rt_status::*;
 
 // The loop of control_loop.c, constant for constant.
@@ -145,7 +147,11 @@ fn compile_and_run(shared: bool) -> String {
         "gcc failed:\n{}",
         String::from_utf8_lossy(&compiled.stderr)
     );
+    // cargo test puts target/<profile> on LD_LIBRARY_PATH, which the loader searches before
+    // the rpath: a libgms_ffi.so left there by an earlier `cargo build` would be run instead of
+    // the one this test built.
     let run = Command::new(&binary)
+        .env("LD_LIBRARY_PATH", &libraries)
         .arg(env!("CARGO_TARGET_TMPDIR"))
         .output()
         .expect("run the C program");
@@ -248,7 +254,98 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("file_null", INVALID_POINTER, "-", 0),
     ("file_folder", INVALID_FILE, "-", 0),
     ("file_device", INVALID_FILE, "-", 0),
+    ("model_ok", OK, "-", 0),
+    ("model_struct_create", OK, "-", 0),
+    ("set_level_ok", OK, "-", 0),
+    (
+        "level_half_stroke_zero",
+        INVALID_PARAMETER,
+        "half_stroke",
+        0,
+    ),
+    ("level_middle_inf", INVALID_PARAMETER, "middle", 0),
+    ("level_trend1_nan", INVALID_PARAMETER, "trend", 1),
+    ("level_three_ripples", INVALID_PARAMETER, "ripple_count", 0),
+    ("level_period_negative", INVALID_PARAMETER, "period", 1),
+    ("level_nine_harmonics", INVALID_PARAMETER, "harmonics", 1),
+    ("level_cos_nan", INVALID_PARAMETER, "cos", 1),
+    ("level_too_deep", INVALID_PARAMETER, "level", 0),
+    ("level_null_cos", INVALID_POINTER, "-", 0),
+    ("level_null_ripples", INVALID_POINTER, "-", 0),
+    ("level_null", INVALID_POINTER, "-", 0),
+    ("level_null_handle", INVALID_POINTER, "-", 0),
+    ("model_feedforward", OK, "-", 0),
+    ("set_position_nan", NOT_FINITE_INPUT, "-", 0),
+    ("set_position_null", INVALID_POINTER, "-", 0),
+    ("set_position_ok", OK, "-", 0),
+    ("model_no_level", OK, "-", 0),
+    ("model_version_2", INVALID_FILE, "-", 0),
+    ("model_version_missing", INVALID_FILE, "-", 0),
+    ("model_format_other", INVALID_FILE, "-", 0),
+    ("model_unknown_key", INVALID_FILE, "-", 0),
+    ("model_units_other", INVALID_FILE, "-", 0),
+    ("model_units_missing", INVALID_FILE, "-", 0),
+    ("model_measurement_string", INVALID_FILE, "-", 0),
+    ("model_measurement_unknown", INVALID_FILE, "-", 0),
+    ("model_friction_unknown", INVALID_FILE, "-", 0),
+    ("model_friction_missing", INVALID_FILE, "-", 0),
+    ("model_friction_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
+    (
+        "model_level_half_stroke",
+        INVALID_PARAMETER,
+        "half_stroke",
+        0,
+    ),
+    ("model_level_trend_length", INVALID_FILE, "-", 0),
+    ("model_level_sin_length", INVALID_PARAMETER, "harmonics", 1),
+    ("model_level_too_deep", INVALID_PARAMETER, "level", 0),
+    ("model_level_unknown", INVALID_FILE, "-", 0),
+    ("model_file_ok", OK, "-", 0),
 ];
+
+/// Samples of the level part of the C program.
+const LEVEL_SAMPLES: i32 = 300;
+
+/// The level of the C program's model file and struct.
+fn screw_level() -> Level {
+    Level::new(
+        0.002,
+        0.01,
+        [0.05, -0.02],
+        &[
+            RippleTerms {
+                period: 0.004,
+                cos: &[0.03, 0.01, 0.005],
+                sin: &[0.0, 0.02, -0.004],
+            },
+            RippleTerms {
+                period: 0.0013,
+                cos: &[0.01, -0.006],
+                sin: &[0.012, 0.003],
+            },
+        ],
+    )
+    .unwrap()
+}
+
+/// The C program's level forces, computed with gms-core: (observer, feedforward).
+fn level_forces() -> (Vec<f64>, Vec<f64>) {
+    let mut observer = Compensator::new(nominal(), DT, Mode::Observer)
+        .unwrap()
+        .with_level(screw_level());
+    let mut feedforward = Compensator::new(nominal(), DT, Mode::Feedforward)
+        .unwrap()
+        .with_level(screw_level());
+    feedforward.set_position(-0.0042).unwrap();
+    (0..LEVEL_SAMPLES)
+        .map(|k| {
+            let k = f64::from(k);
+            let x = 0.003 * (0.01 * k).sin() + 1e-5 * k;
+            let v = 8e-3 * (0.01 * k).cos();
+            (observer.step(x).unwrap(), feedforward.step(v).unwrap())
+        })
+        .unzip()
+}
 
 #[test]
 fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
@@ -306,7 +403,30 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
         "json_unknown_key_named",
         "json_missing_key_named",
         "file_missing_named",
+        "level_struct_equals_file",
+        "level_cos_nan_named",
+        "level_untouched_after_rejections",
+        "model_no_level_equals_plain",
+        "model_version_named",
+        "model_format_named",
+        "model_unknown_key_named",
+        "model_file_equals_text",
     ] {
         assert_eq!(printed.values[named], 1.0, "{named}");
     }
+    // The level through the C ABI is gms-core's (C's sin and cos make the trajectory, hence
+    // the loop's tolerance).
+    let (observer, feedforward) = level_forces();
+    let mut scaled = 0;
+    for k in 0..observer.len() {
+        for (name, rust) in [("observer", observer[k]), ("feedforward", feedforward[k])] {
+            let c = printed.values[&format!("level_{name}_{k}")];
+            assert!(
+                (c - rust).abs() <= 1e-12 * rust.abs().max(1e-6),
+                "{name} sample {k}: C {c} vs Rust {rust}"
+            );
+        }
+        scaled += usize::from(observer[k] != 0.0);
+    }
+    assert!(scaled > 250, "the level run must produce forces");
 }

@@ -3,11 +3,12 @@
 //! between (the control-loop fast path).
 
 use gms_core::Mode;
-use gms_dyn::Compensator;
+use gms_dyn::{Compensator, Level};
 use pyo3::prelude::*;
 
 use crate::convert::real;
 use crate::errors::{raise, InputError};
+use crate::level::level_of;
 use crate::params::{parameter_set, PythonParams};
 
 fn parse_mode(mode: &str) -> PyResult<Mode> {
@@ -30,12 +31,22 @@ pub struct CompensatorEngine {
 #[pymethods]
 impl CompensatorEngine {
     #[new]
-    fn new(params: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>, mode: &str) -> PyResult<Self> {
+    #[pyo3(signature = (params, dt, mode, level = None))]
+    fn new(
+        params: &Bound<'_, PyAny>,
+        dt: &Bound<'_, PyAny>,
+        mode: &str,
+        level: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         let dt = real(dt, "dt")?;
         let mode = parse_mode(mode)?;
         let set = parameter_set(params)?;
+        let level = match level {
+            Some(level) if !level.is_none() => level_of(level)?,
+            _ => Level::none(),
+        };
         Ok(Self {
-            compensator: Compensator::new(&set, dt, mode).map_err(raise)?,
+            compensator: Compensator::with_level(&set, dt, mode, &level).map_err(raise)?,
             params: params.clone().unbind(),
         })
     }
@@ -67,7 +78,22 @@ impl CompensatorEngine {
         Ok(())
     }
 
-    /// Back to rest: relaxed state, no previous position, output 0.
+    /// Sets the position from which feedforward mode integrates the desired velocity to
+    /// evaluate the level (observer mode takes it from its input).
+    fn set_position(&mut self, x: &Bound<'_, PyAny>) -> PyResult<()> {
+        let x = real(x, "x")?;
+        self.compensator
+            .set_position(x)
+            .map_err(|error| InputError::new_err(format!("{error}; the position is unchanged")))
+    }
+
+    /// The feedforward position: the start position plus the desired velocities integrated since.
+    #[getter]
+    fn position(&self) -> f64 {
+        self.compensator.position()
+    }
+
+    /// Back to rest: relaxed state, no previous position, output 0 (the position stays).
     fn reset(&mut self) {
         self.compensator.reset();
     }

@@ -11,6 +11,7 @@
 mod compensator;
 mod convert;
 mod errors;
+mod level;
 mod mechanics;
 mod model;
 mod online;
@@ -32,6 +33,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
     m.add_class::<params::CoreParams>()?;
+    m.add_class::<level::CoreLevel>()?;
+    m.add("MAX_RIPPLES", gms_dyn::MAX_RIPPLES)?;
+    m.add("MAX_HARMONICS", gms_dyn::MAX_HARMONICS)?;
     m.add_class::<model::Engine>()?;
     m.add_class::<mechanics::MassEngine>()?;
     m.add_class::<compensator::CompensatorEngine>()?;

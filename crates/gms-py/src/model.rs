@@ -12,6 +12,7 @@ use crate::convert::{
     channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
 };
 use crate::errors::{raise, InputError};
+use crate::level::level_of;
 use crate::params::parameter_set;
 
 /// z, zeta, `last_position` and `has_last_position` of every channel.
@@ -127,6 +128,27 @@ impl Engine {
         let mut out = zeros(input.len(), "input")?;
         let bank = &mut self.bank;
         py.detach(|| bank.run(input, dt, kind(position), &mut out))
+            .map_err(raise)?;
+        PyArray1::from_vec(py, out).reshape(shape)
+    }
+
+    /// Runs every channel over its row of positions `input`, shape (B, T), with the GIL
+    /// released, the forces scaled by the position-dependent `level`
+    /// (docs/model.md#position-dependent-level).
+    fn _run_position_level<'py>(
+        &mut self,
+        py: Python<'py>,
+        input: PyReadonlyArray2<'py, f64>,
+        dt: f64,
+        level: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let level = level_of(level)?;
+        let shape = [input.shape()[0], input.shape()[1]];
+        same_channels(shape[0], self.bank.channels(), "input", "model")?;
+        let input = input.as_slice()?;
+        let mut out = zeros(input.len(), "input")?;
+        let bank = &mut self.bank;
+        py.detach(|| bank.run_position_level(input, dt, &level, &mut out))
             .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape(shape)
     }

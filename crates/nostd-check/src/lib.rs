@@ -6,7 +6,8 @@
 #![no_std]
 
 use gms_core::{
-    Compensator, LeuvenParams, Linear, LuGreParams, MaxwellSlip, Mode, Scheme, Stribeck,
+    Compensator, LeuvenParams, Level, Linear, LuGreParams, MaxwellSlip, Mode, RippleTerms, Scheme,
+    Stribeck,
 };
 
 #[panic_handler]
@@ -55,11 +56,37 @@ pub extern "C" fn nostd_check_run(dt: f64) -> f64 {
             .step(&mut channel, v, dt, Scheme::Explicit)
             .unwrap_or(f64::NAN);
     }
-    // The compensator in both modes, with a parameter swap between two samples.
+    // A position-dependent level: a trend and one ripple of two harmonics.
+    let ripple = RippleTerms {
+        period: 0.004,
+        cos: &[0.03, 0.01],
+        sin: &[0.0, 0.02],
+    };
+    let Ok(level) = Level::new(0.0, 0.01, [0.05, -0.02], &[ripple]) else {
+        return f64::NAN;
+    };
+    if leuven
+        .simulate_position_level(
+            &mut leuven.relaxed_state(),
+            &velocities,
+            dt,
+            Scheme::Implicit,
+            &level,
+            &mut forces,
+        )
+        .is_ok()
+    {
+        total += forces.iter().sum::<f64>();
+    }
+    // The compensator in both modes, with a level and a parameter swap between two samples.
     for mode in [Mode::Feedforward, Mode::Observer] {
-        let Ok(mut compensator) = Compensator::new(leuven, dt, mode) else {
+        let Ok(compensator) = Compensator::new(leuven, dt, mode) else {
             return f64::NAN;
         };
+        let mut compensator = compensator.with_level(level);
+        if compensator.set_position(1e-3).is_err() {
+            return f64::NAN;
+        }
         for (k, &v) in velocities.iter().enumerate() {
             if k == 3 {
                 compensator.set_params(leuven);

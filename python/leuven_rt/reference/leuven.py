@@ -30,6 +30,7 @@ from scipy.optimize import brentq
 from .._checks import as_signal, check_dt, check_scheme, require_finite
 from .._typing import FloatArray
 from ..errors import DivergenceError, InputError
+from ..level import PositionLevel
 from ..params import Params, ParamsLike, as_params
 
 #: Relative tolerance of the root: the smallest that ``brentq`` accepts (4 ulps), which is also
@@ -256,8 +257,20 @@ def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implici
     return out[0] if one_dimensional else out
 
 
-def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
-    """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample."""
+def simulate_position(
+    params: ParamsLike,
+    x: ArrayLike,
+    dt: float,
+    scheme: str = "implicit",
+    *,
+    level: PositionLevel | None = None,
+) -> FloatArray:
+    """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample.
+
+    With a position-dependent ``level`` (docs/model.md#position-dependent-level) the contact part
+    is scaled: Fₖ = factor(xₖ)·(Fh(z⁺) + σ1·(z⁺ − z)/dt) + σ2·vₖ, with factor as
+    :meth:`PositionLevel.factor` writes it (the phase 2πk·x/P unreduced).
+    """
     params = as_params(params)
     array, one_dimensional = as_signal(x, "x")
     require_finite(array, "x", one_dimensional)
@@ -271,4 +284,7 @@ def simulate_position(params: ParamsLike, x: ArrayLike, dt: float, scheme: str =
         channel, sample = np.unravel_index(int(np.argmax(bad)), v.shape)
         raise InputError(f"`v` must be finite, got {v[channel, sample]} at sample {sample}")
     out = np.stack([_run_channel(params, row, dt, scheme) for row in v])
+    if level is not None:
+        viscous = params.sigma2 * v
+        out = level.factor(array) * (out - viscous) + viscous
     return out[0] if one_dimensional else out

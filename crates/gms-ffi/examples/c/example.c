@@ -7,7 +7,8 @@
  *
  * A 1 kHz loop: the compensator, in feedforward mode, turns a desired velocity (a triangle
  * wave, so that the example needs no libm) into the friction force to add to the command. With a parameter file (what `leuven-rt identify`
- * writes) the compensator is made from it; otherwise from a struct.
+ * writes) or a versioned model file (docs/parameters.md#model-file) the compensator is made from
+ * it; otherwise from a struct.
  */
 #include <stdio.h>
 
@@ -30,6 +31,9 @@ int main(int argc, char **argv) {
                 error.field, error.message);
         return 1;
     }
+    /* A model file may hold a position-dependent level; in feedforward mode it is evaluated at the
+     * position integrated from the desired velocity, which starts where the axis is. */
+    if (leuven_rt_compensator_set_position(c, 0.0) != LEUVEN_RT_OK) return 1;
     double peak = 0.0;
     for (int k = 0; k < 2000; ++k) {
         /* 1 s period, +-10 mm/s. */

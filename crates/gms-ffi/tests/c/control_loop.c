@@ -11,6 +11,9 @@
  * sample 1500 their input is NaN (the loop must get LEUVEN_RT_NOT_FINITE_INPUT and the last good
  * force, and leaves the compensator out for that sample). Output lines:
  *
+ * A third part gives compensators a position-dependent level, from the versioned model file and
+ * from the struct, steps them over a fixed trajectory, and refuses bad levels and bad files.
+ *
  *   loop <k> <x_feedforward> <force_feedforward> <x_observer> <force_observer>
  *   check <name> <status> <field> <index>
  *   value <name> <number>
@@ -163,13 +166,6 @@ static int control_loops(void) {
     return 0;
 }
 
-/* Every bad argument the library can detect gets a status, never a crash. */
-static void bad_input(const char *folder) {
-    leuven_rt_params p = nominal();
-    leuven_rt_compensator *c = NULL;
-    leuven_rt_error error;
-    double force = -1.0;
-
 /* Calls with an error struct: it is filled with garbage first, so that a call that leaves it
  * unwritten shows ("unwritten", 99); every status must write all of it. */
 #define EXPECT(name, call)                                 \
@@ -187,6 +183,13 @@ static void bad_input(const char *folder) {
         leuven_rt_status status_ = (call);                 \
         check(name, status_, NULL);                        \
     } while (0)
+
+/* Every bad argument the library can detect gets a status, never a crash. */
+static void bad_input(const char *folder) {
+    leuven_rt_params p = nominal();
+    leuven_rt_compensator *c = NULL;
+    leuven_rt_error error;
+    double force = -1.0;
 
     EXPECT("create_null_params", leuven_rt_compensator_create(NULL, DT, 0, &c, &error));
     EXPECT("create_null_out", leuven_rt_compensator_create(&p, DT, 0, NULL, &error));
@@ -347,10 +350,191 @@ static void bad_input(const char *folder) {
     }
 }
 
+#define LEVEL_SAMPLES 300
+
+/* The trajectory of the level part: a swing of a few ripple periods with a slow drift. */
+static double level_position(int k) { return 0.003 * sin(0.01 * k) + 1e-5 * k; }
+static double level_velocity(int k) { return 8e-3 * cos(0.01 * k); }
+
+/* A trend and two ripples; the model file MODEL below holds the same. */
+static const double COS0[3] = {0.03, 0.01, 0.005}, SIN0[3] = {0.0, 0.02, -0.004};
+static const double COS1[2] = {0.01, -0.006}, SIN1[2] = {0.012, 0.003};
+
+static const char MODEL[] =
+    "{\"format\": \"leuven-rt model\", \"version\": 1, \"units\": \"linear\",\n"
+    " \"friction\": {\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0,\n"
+    "   \"sigma1\": 30.0, \"sigma2\": 0.4, \"W\": [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],\n"
+    "   \"Delta\": [1e-06, 2e-06, 3e-06, 4e-06, 5e-06, 6e-06, 7e-06, 8e-06, 9e-06, 1e-05]},\n"
+    " \"level\": {\"middle\": 0.002, \"half_stroke\": 0.01, \"trend\": [0.05, -0.02],\n"
+    "   \"ripples\": [{\"period\": 0.004, \"cos\": [0.03, 0.01, 0.005], \"sin\": [0.0, 0.02, -0.004]},\n"
+    "                 {\"period\": 0.0013, \"cos\": [0.01, -0.006], \"sin\": [0.012, 0.003]}]},\n"
+    " \"measurement\": {\"offset\": 0.1, \"inertia\": 0.0},\n"
+    " \"report\": {\"rms\": 0.02, \"notes\": [\"anything\", {\"goes\": null}]}}\n";
+
+/* A model file without a level, its measurement and report ignored. */
+static const char MODEL_NO_LEVEL[] =
+    "{\"format\": \"leuven-rt model\", \"version\": 1, \"units\": \"rotary\",\n"
+    " \"friction\": {\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0,\n"
+    "   \"sigma1\": 30.0, \"sigma2\": 0.4, \"W\": [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],\n"
+    "   \"Delta\": [1e-06, 2e-06, 3e-06, 4e-06, 5e-06, 6e-06, 7e-06, 8e-06, 9e-06, 1e-05]},\n"
+    " \"level\": null, \"measurement\": {\"offset\": -3.5, \"inertia\": 0.25}}";
+
+/* `MODEL` with `from` (the first occurrence) replaced by `to`, in `out`. */
+static const char *edited(char *out, size_t size, const char *from, const char *to) {
+    const char *at = strstr(MODEL, from);
+    if (at == NULL) {
+        fprintf(stderr, "no %s in the model file\n", from);
+        exit(2);
+    }
+    snprintf(out, size, "%.*s%s%s", (int)(at - MODEL), MODEL, to, at + strlen(from));
+    return out;
+}
+
+static void levels(const char *folder) {
+    leuven_rt_params p = nominal();
+    leuven_rt_error error;
+    leuven_rt_compensator *file = NULL, *made = NULL, *plain = NULL, *c = NULL;
+    double force = 0.0, other = 0.0;
+    EXPECT("model_ok", leuven_rt_compensator_create_from_json(MODEL, strlen(MODEL), DT,
+                                                               LEUVEN_RT_MODE_OBSERVER, &file, &error));
+    EXPECT("model_struct_create", leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_OBSERVER, &made, &error));
+    leuven_rt_ripple ripples[3] = {{0.004, COS0, SIN0, 3}, {0.0013, COS1, SIN1, 2}, {0.5, NULL, NULL, 0}};
+    leuven_rt_level level = {0.002, 0.01, {0.05, -0.02}, ripples, 2};
+    EXPECT("set_level_ok", leuven_rt_compensator_set_level(made, &level, &error));
+    int same = file != NULL && made != NULL;
+    for (int k = 0; same && k < LEVEL_SAMPLES; ++k) {
+        same = leuven_rt_compensator_step(file, level_position(k), &force) == LEUVEN_RT_OK &&
+               leuven_rt_compensator_step(made, level_position(k), &other) == LEUVEN_RT_OK &&
+               force == other;
+        printf("value level_observer_%d %.17g\n", k, force);
+    }
+    printf("value level_struct_equals_file %d\n", same);
+
+    /* Bad levels: each named, and none changes the compensator. */
+    leuven_rt_level bad = level;
+    bad.half_stroke = 0.0;
+    EXPECT("level_half_stroke_zero", leuven_rt_compensator_set_level(made, &bad, &error));
+    bad = level;
+    bad.middle = INFINITY;
+    EXPECT("level_middle_inf", leuven_rt_compensator_set_level(made, &bad, &error));
+    bad = level;
+    bad.trend[1] = NAN;
+    EXPECT("level_trend1_nan", leuven_rt_compensator_set_level(made, &bad, &error));
+    bad = level;
+    bad.ripple_count = 3;
+    EXPECT("level_three_ripples", leuven_rt_compensator_set_level(made, &bad, &error));
+    leuven_rt_ripple bad_ripples[2] = {ripples[0], ripples[1]};
+    bad = level;
+    bad.ripples = bad_ripples;
+    bad_ripples[1].period = -1.0;
+    EXPECT("level_period_negative", leuven_rt_compensator_set_level(made, &bad, &error));
+    static const double NINE[9] = {0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.01};
+    bad_ripples[1] = (leuven_rt_ripple){0.01, NINE, NINE, 9};
+    EXPECT("level_nine_harmonics", leuven_rt_compensator_set_level(made, &bad, &error));
+    const double cos_nan[2] = {0.01, NAN};
+    bad_ripples[1] = (leuven_rt_ripple){0.01, cos_nan, SIN1, 2};
+    EXPECT("level_cos_nan", leuven_rt_compensator_set_level(made, &bad, &error));
+    printf("value level_cos_nan_named %d\n", strstr(error.message, "ripples[1].cos[1]") != NULL);
+    const double deep[2] = {0.5, 0.4};
+    bad_ripples[1] = (leuven_rt_ripple){0.01, deep, SIN1, 2};
+    EXPECT("level_too_deep", leuven_rt_compensator_set_level(made, &bad, &error));
+    bad_ripples[1] = (leuven_rt_ripple){0.01, NULL, SIN1, 2};
+    EXPECT("level_null_cos", leuven_rt_compensator_set_level(made, &bad, &error));
+    bad = level;
+    bad.ripples = NULL;
+    EXPECT("level_null_ripples", leuven_rt_compensator_set_level(made, &bad, &error));
+    EXPECT("level_null", leuven_rt_compensator_set_level(made, NULL, &error));
+    EXPECT("level_null_handle", leuven_rt_compensator_set_level(NULL, &level, &error));
+    leuven_rt_compensator_step(file, level_position(LEVEL_SAMPLES), &force);
+    leuven_rt_compensator_step(made, level_position(LEVEL_SAMPLES), &other);
+    printf("value level_untouched_after_rejections %d\n", force == other);
+    leuven_rt_compensator_destroy(made);
+    made = NULL;
+
+    /* Feedforward: the position is integrated from the start given. */
+    EXPECT("model_feedforward", leuven_rt_compensator_create_from_json(
+                                    MODEL, strlen(MODEL), DT, LEUVEN_RT_MODE_FEEDFORWARD, &c, &error));
+    STATUS("set_position_nan", leuven_rt_compensator_set_position(c, NAN));
+    STATUS("set_position_null", leuven_rt_compensator_set_position(NULL, 0.0));
+    STATUS("set_position_ok", leuven_rt_compensator_set_position(c, -0.0042));
+    for (int k = 0; k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step(c, level_velocity(k), &force);
+        printf("value level_feedforward_%d %.17g\n", k, force);
+    }
+    leuven_rt_compensator_destroy(c);
+    c = NULL;
+
+    /* A model file without a level is the plain parameter set. */
+    EXPECT("model_no_level", leuven_rt_compensator_create_from_json(
+                                 MODEL_NO_LEVEL, strlen(MODEL_NO_LEVEL), DT, LEUVEN_RT_MODE_OBSERVER, &c, &error));
+    leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_OBSERVER, &plain, NULL);
+    same = c != NULL && plain != NULL;
+    for (int k = 0; same && k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step(c, level_position(k), &force);
+        leuven_rt_compensator_step(plain, level_position(k), &other);
+        same = force == other;
+    }
+    printf("value model_no_level_equals_plain %d\n", same);
+    leuven_rt_compensator_destroy(c);
+    leuven_rt_compensator_destroy(plain);
+    c = NULL;
+
+    /* Bad model files. */
+    char text[4096];
+#define MODEL_EXPECT(name, from, to)                                                         \
+    do {                                                                                     \
+        const char *json_ = edited(text, sizeof text, from, to);                             \
+        EXPECT(name, leuven_rt_compensator_create_from_json(json_, strlen(json_), DT, 0, &c, &error)); \
+    } while (0)
+    MODEL_EXPECT("model_version_2", "\"version\": 1", "\"version\": 2");
+    printf("value model_version_named %d\n", strstr(error.message, "`version` must be 1, got 2") != NULL);
+    MODEL_EXPECT("model_version_missing", "\"version\": 1,", "");
+    MODEL_EXPECT("model_format_other", "leuven-rt model", "leuven-rt params");
+    printf("value model_format_named %d\n", strstr(error.message, "`format` must be") != NULL);
+    MODEL_EXPECT("model_unknown_key", "\"units\"", "\"extra\": 1, \"units\"");
+    printf("value model_unknown_key_named %d\n", strstr(error.message, "extra") != NULL);
+    MODEL_EXPECT("model_units_other", "\"linear\"", "\"furlongs\"");
+    MODEL_EXPECT("model_units_missing", "\"units\": \"linear\",", "");
+    MODEL_EXPECT("model_measurement_string", "\"offset\": 0.1", "\"offset\": \"0.1\"");
+    MODEL_EXPECT("model_measurement_unknown", "\"inertia\": 0.0", "\"inertia\": 0.0, \"mass\": 1");
+    MODEL_EXPECT("model_friction_unknown", "\"sigma2\": 0.4", "\"sigma2\": 0.4, \"Fq\": 1");
+    MODEL_EXPECT("model_friction_missing", "\"Vs\": 0.001, ", "");
+    MODEL_EXPECT("model_friction_fs_below_fc", "\"Fs\": 1.5", "\"Fs\": 0.5");
+    MODEL_EXPECT("model_level_half_stroke", "\"half_stroke\": 0.01", "\"half_stroke\": -0.01");
+    MODEL_EXPECT("model_level_trend_length", "[0.05, -0.02]", "[0.05, -0.02, 0.1]");
+    MODEL_EXPECT("model_level_sin_length", "\"sin\": [0.012, 0.003]", "\"sin\": [0.012]");
+    MODEL_EXPECT("model_level_too_deep", "\"trend\": [0.05, -0.02]", "\"trend\": [0.5, -0.4]");
+    MODEL_EXPECT("model_level_unknown", "\"middle\"", "\"centre\": 0, \"middle\"");
+    if (c != NULL) {
+        fprintf(stderr, "a refused model file must leave *out as it was\n");
+        exit(2);
+    }
+
+    char path[4096];
+    snprintf(path, sizeof path, "%s/leuven_rt_model.json", folder);
+    FILE *out = fopen(path, "w");
+    if (out == NULL || fputs(MODEL, out) < 0 || fclose(out) != 0) {
+        fprintf(stderr, "cannot write %s\n", path);
+        exit(2);
+    }
+    EXPECT("model_file_ok", leuven_rt_compensator_create_from_file(path, DT, LEUVEN_RT_MODE_OBSERVER, &c, &error));
+    leuven_rt_compensator_step(c, level_position(0), &force);
+    leuven_rt_compensator_step(c, level_position(1), &force);
+    leuven_rt_compensator_destroy(file);
+    file = NULL;
+    leuven_rt_compensator_create_from_json(MODEL, strlen(MODEL), DT, LEUVEN_RT_MODE_OBSERVER, &file, NULL);
+    leuven_rt_compensator_step(file, level_position(0), &other);
+    leuven_rt_compensator_step(file, level_position(1), &other);
+    printf("value model_file_equals_text %d\n", force == other);
+    leuven_rt_compensator_destroy(c);
+    leuven_rt_compensator_destroy(file);
+}
+
 /* argv[1]: a folder to write a parameter file in (default: the current one). */
 int main(int argc, char **argv) {
     int status = control_loops();
     if (status != 0) return status;
     bad_input(argc > 1 ? argv[1] : ".");
+    levels(argc > 1 ? argv[1] : ".");
     return 0;
 }
