@@ -8,7 +8,7 @@
 - :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
 - :class:`MassSystem`, :func:`simulate_mass`: a mass on the friction model driven by a force.
 - :func:`diagnose`: name the effects a friction model misses in a log (:mod:`leuven_rt.discrepancy`).
-- :func:`identify`: fit the model to a log of position and force (:mod:`leuven_rt.identification`).
+- :func:`identify`: the friction model a log supports, as a model file (the fit of :func:`diagnose`).
 - :func:`predict`: a model's force along a log's motion, next to the measured force (:class:`Prediction`).
 - :class:`OnlineIdentifier`: recursive least squares on the terms that enter linearly, in the loop.
 - :mod:`leuven_rt.reference`: the same discrete steps in plain numpy, written as the specification.
@@ -45,16 +45,16 @@ if TYPE_CHECKING:
     from . import reference
     from .data.records import MotionData
     from .discrepancy.diagnose import diagnose
+    from .discrepancy.identify import Identification, identify
     from .discrepancy.report import Diagnosis
-    from .identification import IdentificationResult, identify
     from .prediction import Prediction, predict
 
 #: Names served on first use, and the module each comes from.
 _LAZY = {
     "Diagnosis": "discrepancy",
     "diagnose": "discrepancy",
-    "IdentificationResult": "identification",
-    "identify": "identification",
+    "Identification": "discrepancy.identify",
+    "identify": "discrepancy.identify",
     "MotionData": "data.records",
     "Prediction": "prediction",
     "predict": "prediction",
@@ -67,7 +67,7 @@ __all__ = [
     "DataError",
     "Diagnosis",
     "DivergenceError",
-    "IdentificationResult",
+    "Identification",
     "InputError",
     "LeuvenModel",
     "MassState",

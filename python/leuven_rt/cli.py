@@ -129,30 +129,22 @@ def _figures(arguments: argparse.Namespace) -> int:
 
 def _identify(arguments: argparse.Namespace) -> int:
     from ._output import check_outputs, text_writer, write_files
-    from .identification import identify, model_file_from_identification
+    from .discrepancy import identify
 
     outputs: list[tuple[str, str, bool]] = [("-o/--output", arguments.output, False)]
     if arguments.report is not None:
         outputs.append(("--report", arguments.report, False))
     targets = check_outputs(outputs, inputs=[arguments.data], force=arguments.force)
     record = _load(arguments)
-    result = identify(
-        record,
-        elements=arguments.elements,
-        asymmetric=arguments.asymmetric,
-        cutoff=arguments.cutoff,
-        held_out=arguments.held_out,
-        progress=not arguments.quiet,
-    )
-    model = model_file_from_identification(result, units=record.units, notes=record.notes)
-    texts = [model.to_json() + "\n", result.report.to_json() + "\n"]
+    result = identify(record, arguments.baseline, progress=not arguments.quiet)
+    texts = [result.model.to_json() + "\n", result.diagnosis.to_json() + "\n"]
     # Both files or neither: each is written beside its target and renamed once both are complete.
     write_files([(target, text_writer(text)) for target, text in zip(targets, texts, strict=False)])
     if not arguments.quiet:
-        print(result.report.summary())
+        print(result.summary())
         print(f"model file ({record.units}): {arguments.output}")
-    for warning in result.report.warnings if arguments.quiet else ():
-        print(f"warning: {warning}", file=sys.stderr)
+    for warning in result.warnings if arguments.quiet else ():
+        print(f"leuven-rt identify: warning: {warning}", file=sys.stderr)
     return 0
 
 
@@ -219,21 +211,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     figures.add_argument("--quick", action="store_true", help="two coarser step sizes for Fig. 1 (for tests)")
     figures.set_defaults(run=_figures)
     identify = commands.add_parser(
-        "identify", help="fit the model to a log of position and force (.csv t,x,f[,v] or EMPS .mat)"
+        "identify",
+        help="fit the friction model a log supports and write its model file (.csv t,x,f[,v] or EMPS .mat)",
     )
     identify.add_argument("data", help=LOG_HELP)
     identify.add_argument(
         "-o", "--output", required=True, help="where to write the model file (JSON, docs/data-and-reports.md)"
     )
-    identify.add_argument("--report", help="also write the identification report here (JSON)")
+    identify.add_argument("--report", help="also write the diagnosis report here (JSON)")
     identify.add_argument(
-        "--elements", type=int, help="number of Maxwell-slip elements (default: chosen from the data)"
+        "--baseline", default="coulomb,viscous", help="effects the model starts from (comma-separated)"
     )
-    identify.add_argument("--asymmetric", action="store_true", help="fit Fc_neg and Fs_neg as well")
-    identify.add_argument(
-        "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
-    )
-    identify.add_argument("--held-out", type=float, default=0.25, help="share of the record kept for scoring")
     identify.add_argument("--force", action="store_true", help=FORCE_HELP)
     identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
     _add_log_options(identify)

@@ -119,15 +119,9 @@ def predict(
 
 
 def _friction(model: ModelFile, x: FloatArray, dt: float) -> FloatArray:
-    """factor(x)·(F − σ2·v) + σ2·v along ``x``: the level scales the contact part only."""
-    plain = simulate_position(model.friction, x, dt)
-    if model.level is None:
-        return plain  # factor 1: exactly the plain model, as a compensator without a level gives
-    v = np.zeros_like(x)
-    v[1:] = np.diff(x) / dt  # the model's own velocity (docs/model.md#discrete-step)
-    viscous = model.friction.sigma2 * v
-    out: FloatArray = model.level.factor(x) * (plain - viscous) + viscous
-    return out
+    """The friction along ``x``, with the level (docs/model.md#position-dependent-level): the
+    run a compensator in observer mode makes over the same positions."""
+    return simulate_position(model.friction, x, dt, level=model.level)
 
 
 __all__ = ["CSV_COLUMNS", "Prediction", "predict"]

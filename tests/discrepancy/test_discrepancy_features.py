@@ -54,5 +54,6 @@ def test_a_pause_inside_one_step_is_not_a_turn() -> None:
     x = np.round(x_true / step) * step
     data = MotionData(np.arange(x.size) * dt, x, np.zeros(x.size))
     features = compute_features(data)
-    flips = np.flatnonzero(np.diff(np.sign(features.sign)) < 0) + 1
+    held = features.sign + features.rest  # the direction, held through the stop
+    flips = np.flatnonzero(np.diff(np.sign(held)) < 0) + 1
     assert flips.size == 1 and 790 <= flips[0] <= 820, flips

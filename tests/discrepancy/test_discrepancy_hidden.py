@@ -81,15 +81,15 @@ def test_null_case_names_nothing() -> None:
 def test_drift_outside_the_catalogue_names_nothing_wrong_and_stays_unexplained() -> None:
     diagnosis = lr.diagnose(make_hidden(BASE, dt=DT, drift=True).data, BASE)
     assert diagnosis.named_effects == [], diagnosis.story()
-    assert diagnosis.unexplained_significant
-    assert diagnosis.rms_after > 2.0 * diagnosis.noise_std
+    assert diagnosis.unexplained_significant and diagnosis.drift, diagnosis.story()
+    assert "drift" in diagnosis.unexplained_where
 
 
 def test_report_follows_design_section_4() -> None:
     diagnosis = lr.diagnose(make_hidden((*BASE, "inertia"), dt=DT).data, "coulomb,viscous")
     report = json.loads(diagnosis.to_json())
     assert list(report) == ["samples", "noise_std", "baseline", "rms_before", "rms_after", "named_effects",
-                            "steps", "unexplained", "final_model"]  # fmt: skip
+                            "steps", "unexplained", "settings", "final_model"]  # fmt: skip
     assert report["samples"] == diagnosis.samples and report["baseline"] == list(BASE)
     assert report["named_effects"] == ["inertia"]
     (step,) = report["steps"]

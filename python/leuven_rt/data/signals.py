@@ -6,6 +6,7 @@ Every fit works from these: the identification stages and the discrepancy workfl
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -82,7 +83,7 @@ def noise_floor(force: FloatArray) -> float:
             break
         differences = force[lag:] - force[:-lag]
         spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
-        estimate = spread / np.sqrt(2.0)
+        estimate = spread / math.sqrt(2.0)
         if previous is not None and estimate < (1.0 + PLATEAU) * previous:
             return previous
         previous = estimate

@@ -82,8 +82,9 @@ def deploy(fit: ModelFit, features: Features, units: Units, report: dict[str, ob
     total = sum(w for w, _ in kept)
     scale = MARGIN * max(fs, fs_neg) / total
     asymmetric = "asymmetry" in fit.effects
+    vs, delta = (shape.Vs, shape.delta) if shape is not None else (1.0, 2.0)
     params = Params(
-        Fc=fc, Fs=fs, Vs=shape.Vs if shape is not None else 1.0, delta=shape.delta if shape is not None else 2.0,
+        Fc=fc, Fs=fs, Vs=vs, delta=delta,
         n=fit.drive.n if fit.drive is not None else 2.0, sigma1=0.0, sigma2=max(c.get("sigma2", 0.0), 0.0),
         W=tuple(w * scale for w, _ in kept), Delta=tuple(float(d) for _, d in kept),
         **({"Fc_neg": fc_neg, "Fs_neg": fs_neg} if asymmetric else {}),
@@ -98,7 +99,9 @@ def deploy(fit: ModelFit, features: Features, units: Units, report: dict[str, ob
         if name.startswith("W") or name == "Fc_rest":
             continue
         if abs(value) > 0.0 and error > UNDETERMINED * abs(value):
-            warnings.append(f"{name} = {value:.4g} is not determined by this excitation (standard error {error:.3g})")
+            warnings.append(
+                f"{name} = {value:.4g} is not determined by this excitation (standard error {error:.3g})"
+            )
     model = ModelFile(
         friction=params, level=level, offset=c.get("offset", 0.0), inertia=max(c.get("M", 0.0), 0.0),
         units=units, report={**report, "warnings": warnings},
@@ -129,5 +132,8 @@ def _level(fit: ModelFit, features: Features, fc: float, warnings: list[str]) ->
         ripples = [Ripple(r.period, tuple(x * shrink for x in r.cos), tuple(x * shrink for x in r.sin))
                    for r in ripples]  # fmt: skip
     return PositionLevel(
-        middle=features.scales.middle, half_stroke=features.scales.half_stroke, trend=trend, ripples=tuple(ripples)
+        middle=features.scales.middle,
+        half_stroke=features.scales.half_stroke,
+        trend=trend,
+        ripples=tuple(ripples),
     )

@@ -21,9 +21,9 @@ from numpy.typing import NDArray
 from tqdm import tqdm
 
 from .._extras import progress_wanted
+from .._typing import FloatArray
 from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
-from .._typing import FloatArray
 from ..errors import InputError
 from ..units import unit_names
 from .effects import CATALOGUE, DRIFT, parse_effects
@@ -91,7 +91,7 @@ def diagnose(
             cross_validate(run.effects, run.features, folds),
             cross_validate((*run.effects, DRIFT.name), run.features, folds),
             noise,
-            settings,
+            dataclasses.replace(settings, significance=settings.drift),
         )
         if drift:
             run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
@@ -134,11 +134,8 @@ def _select(
         candidates = [name for name in CATALOGUE if name not in run.effects]
         if not candidates:
             break
-        if "position_dependence" not in run.effects:  # the ripple's periods, in what is left now
-            periods = find_periods(run.features.sign, run.features.x, run.residual, usable)
-            run.features = dataclasses.replace(
-                run.features, scales=dataclasses.replace(run.features.scales, periods=periods)
-            )
+        if "position_dependence" not in run.effects:
+            run.features = _ripples(run, folds, noise)
         scores = _score(run.effects, [(name,) for name in candidates], run.features, folds, bar)
         best = choose(current, scores, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
@@ -147,7 +144,7 @@ def _select(
             # Among the effects that gain on their own, if not enough: the PAIRED best of them.
             ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
-            pairs = list(itertools.combinations(gaining, 2))
+            pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
             best = choose(current, _score(run.effects, pairs, run.features, folds, bar), noise, settings)
         if best is None:
             break
@@ -157,13 +154,33 @@ def _select(
             model = fit_model(effects_now, run.features, usable)
             after = run.features.force - model.predict(run.features)
             run.steps.append(
-                Step(name, where_improved(run.features, run.residual, after, unit), _rms(run.residual, usable),
-                     _rms(after, usable), model.params(name))  # fmt: skip
+                Step(
+                    name,
+                    where_improved(run.features, run.residual, after, unit),
+                    _rms(run.residual, usable),
+                    _rms(after, usable),
+                    model.params(name),
+                )
             )
             run.effects, run.model, run.residual = effects_now, model, after
             run.residuals.append(after)
         current = best
     return run
+
+
+def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> Features:
+    """The features with the ripple periods of the position effect: those found in what the model
+    leaves now, as many of them (none, the first, both) as predict the held-out blocks best (a
+    period that fits where the record dwells can extrapolate badly to where it travels once)."""
+    found = find_periods(run.features.sign, run.features.x, run.residual, run.features.usable, noise)
+    options = [
+        dataclasses.replace(run.features, scales=dataclasses.replace(run.features.scales, periods=found[:count]))
+        for count in range(len(found) + 1)
+    ]
+    if len(options) == 1:
+        return options[0]
+    effects = (*run.effects, "position_dependence")
+    return min(options, key=lambda features: cross_validate(effects, features, folds).mse)
 
 
 def _score(

@@ -120,20 +120,23 @@ def direction_of_motion(
     return sign
 
 
-def at_rest(data: MotionData) -> NDArray[np.bool_]:
-    """Samples where the axis stands still: the logged velocity is exactly 0, or (without one)
-    the position has not changed for at least REST samples."""
+def at_rest(data: MotionData, v: FloatArray, resolution: float) -> NDArray[np.bool_]:
+    """Samples where the axis stands still: the logged velocity is exactly 0, or (without one) the
+    position has not changed for at least REST samples while the filtered velocity ``v`` stays
+    below a fifth of one resolution step per REST samples (a slow move inside one encoder step
+    is not a stop)."""
     if data.v is not None:
         resting: NDArray[np.bool_] = data.v == 0.0
         return resting
     still = np.concatenate([[False], np.diff(data.x) == 0.0])
-    # the length of the run of unchanged positions each sample belongs to
+    # the runs of unchanged positions, as (start, stop) pairs
     edges = np.flatnonzero(np.diff(np.concatenate([[0], still.astype(np.int8), [0]])))
     out = np.zeros(data.samples, dtype=bool)
     for start, stop in zip(edges[::2], edges[1::2], strict=True):
         if stop - start >= REST:
-            out[start - 1 if start else 0 : stop] = True
-    return out
+            out[max(start - 1, 0) : stop] = True
+    slow: NDArray[np.bool_] = np.abs(v) < 0.2 * resolution / (REST * data.dt)
+    return out & slow
 
 
 def _hold(sign: FloatArray, fallback: FloatArray) -> FloatArray:
@@ -162,7 +165,7 @@ def compute_features(data: MotionData, scales: Scales | None = None) -> Features
     usable[:edge] = False
     usable[data.samples - edge :] = False
     held = direction_of_motion(data.x, x, scales.play, spread)
-    resting = at_rest(data)
+    resting = at_rest(data, v, spread[0])
     held = _hold(np.sign(data.v), held) if data.v is not None else held
     return Features(
         t=data.t, force=data.f, x=x, v=v, a=a,

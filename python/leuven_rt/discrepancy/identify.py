@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from ..data.records import DataLike, as_motion_data
 from ..modelfile import ModelFile
+from ..params import Params
 from .deploy import deploy
 from .diagnose import DEFAULT_BASELINE, diagnose
 from .report import Diagnosis
@@ -27,14 +28,17 @@ class Identification:
     model: ModelFile
     diagnosis: Diagnosis
     warnings: tuple[str, ...]
+    """What the fit could not determine or the file cannot hold (the log's own warnings are in
+    the report's ``data_notes``)."""
 
     @property
-    def params(self) -> object:
-        """The friction model (:class:`~leuven_rt.Params`) of the file."""
+    def params(self) -> Params:
+        """The friction model of the file."""
         return self.model.friction
 
     def summary(self) -> str:
-        lines = [self.diagnosis.story(), f"model file: {', '.join(self.diagnosis.baseline + tuple(self.diagnosis.named_effects))}"]
+        effects = ", ".join((*self.diagnosis.baseline, *self.diagnosis.named_effects))
+        lines = [self.diagnosis.story(), f"model file: {effects}"]
         lines.extend(f"warning: {text}" for text in self.warnings)
         return "\n".join(lines)
 
@@ -58,4 +62,4 @@ def identify(
     if record.notes:
         report["data_notes"] = list(record.notes)
     deployment = deploy(diagnosis.final_model, diagnosis.features, record.units, report)
-    return Identification(deployment.model, diagnosis, (*record.notes, *deployment.warnings))
+    return Identification(deployment.model, diagnosis, deployment.warnings)

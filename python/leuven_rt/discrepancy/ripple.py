@@ -28,11 +28,17 @@ PERIODS = 2
 #: A peak counts when its power is this many times the spectrum's median (a flat spectrum of
 #: noise has peaks of a few times its median; a ripple of the noise's size, hundreds).
 PEAK = 20.0
+#: A period's columns must lower the residual's sum of squares by this many σ²: far above what
+#: the best of the thousands of periods searched gains on noise alone (about 2·ln(periods)
+#: + the columns, some 20 σ²).
+EVIDENCE = 100.0
 #: Bins per shortest period.
 BINS_PER_PERIOD = 8
 
 
-def ripple_columns(sign: FloatArray, x: FloatArray, period: float, harmonics: int = HARMONICS) -> list[FloatArray]:
+def ripple_columns(
+    sign: FloatArray, x: FloatArray, period: float, harmonics: int = HARMONICS
+) -> list[FloatArray]:
     """sgn(v)·cos(2πk·x/P) and sgn(v)·sin(2πk·x/P) for k = 1..``harmonics``."""
     phase = 2.0 * np.pi * x / period
     out = []
@@ -41,8 +47,12 @@ def ripple_columns(sign: FloatArray, x: FloatArray, period: float, harmonics: in
     return out
 
 
-def find_periods(sign: FloatArray, x: FloatArray, residual: FloatArray, rows: NDArray[np.bool_]) -> tuple[float, ...]:
-    """Up to :data:`PERIODS` periods of a ripple in ``residual`` (force − model) on ``rows``."""
+def find_periods(
+    sign: FloatArray, x: FloatArray, residual: FloatArray, rows: NDArray[np.bool_], noise_std: float
+) -> tuple[float, ...]:
+    """Up to :data:`PERIODS` periods of a ripple in ``residual`` (force − model) on ``rows``; a
+    period counts when its columns lower the residual's sum of squares by more than
+    :data:`EVIDENCE`·σ² (σ = ``noise_std``)."""
     moving = rows & (sign != 0.0)
     if np.count_nonzero(moving) < 100:
         return ()
@@ -57,6 +67,10 @@ def find_periods(sign: FloatArray, x: FloatArray, residual: FloatArray, rows: ND
         if period is None:
             break
         period = _refine(position, target, found, period)
+        before = target - _fitted(position, target, found)
+        after = target - _fitted(position, target, [*found, period])
+        if float(before @ before - after @ after) < EVIDENCE * noise_std**2:
+            break
         # closer than two resolution steps of the spectrum to a period found: the first's leakage
         if any(abs(1.0 / period - 1.0 / other) < 2.0 / stroke for other in found):
             break
@@ -65,7 +79,10 @@ def find_periods(sign: FloatArray, x: FloatArray, residual: FloatArray, rows: ND
 
 
 def _design(position: FloatArray, periods: list[float]) -> FloatArray:
-    columns = [np.ones_like(position)]
+    # the level's smooth trend (P0..P2 along the stroke) is fitted with the ripple, so that its
+    # leakage into the long periods is not taken for one
+    p = 2.0 * (position - np.min(position)) / max(float(np.ptp(position)), 1e-300) - 1.0
+    columns = [np.ones_like(position), p, 1.5 * p * p - 0.5]
     for period in periods:
         columns.extend(ripple_columns(np.ones_like(position), position, period))
     return np.column_stack(columns)

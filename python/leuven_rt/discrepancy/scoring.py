@@ -1,8 +1,8 @@
 """Scores a model on data it was not fitted to: blocked cross-validation in time, and whether an
 improvement stands out against the estimated noise floor.
 
-The usable samples are cut into :attr:`Settings.folds <.settings.Settings.folds>` contiguous blocks; each block is predicted by the
-model fitted to the other blocks. Blocks (not random samples) keep neighbouring, correlated
+The usable samples are cut into ``settings.folds`` contiguous blocks; each block is predicted by
+the model fitted to the other blocks. Blocks (not random samples) keep neighbouring, correlated
 samples on the same side of the split, so a term that only fits the noise gains nothing and a
 term that fits a slow change over time (which the catalogue does not have) does not carry over
 from one block to the next.

@@ -27,6 +27,9 @@ class Settings:
     joint: float = 1.0
     """When no single effect counts but the held-out mean squared error exceeds σ² by more than this
     many σ², pairs of effects are tried together."""
+    drift: float = 1.0
+    """A friction level drifting over the record is fitted alongside (and reported) when it lowers
+    the final model's held-out mean squared error by more than this many σ² (one-sided as above)."""
     unexplained: float = 0.2
     """What remains is significant when its mean square exceeds σ² by more than this many σ²."""
 
@@ -35,9 +38,13 @@ class Settings:
             value: Any = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
                 raise InputError(f"`settings.{name}` must be an integer >= {low}, got {value!r:.80}")
-        for name in ("significance", "loss", "joint", "unexplained"):
+        for name in ("significance", "loss", "joint", "drift", "unexplained"):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0.0 <= float(value) < float("inf"):
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, numbers.Real)
+                or not 0.0 <= float(value) < float("inf")
+            ):
                 raise InputError(f"`settings.{name}` must be a finite number >= 0, got {value!r:.80}")
 
     def to_dict(self) -> dict[str, float]:

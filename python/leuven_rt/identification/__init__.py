@@ -1,6 +1,6 @@
 """Identification: fit the modified Leuven model to measured position and force, offline.
 
-- :func:`identify` (re-exported as ``leuven_rt.identify``): the whole model from a log, with a
+- :func:`identify_staged`: the modified Leuven model from a log in stages, with a
   report (errors per stage, held-out error, conditioning, warnings);
 - the stages: :mod:`.inverse_model` (IDIM-LS: inertia, viscous, Coulomb, offset, as in the EMPS
   benchmark), :mod:`.sliding`, :mod:`.presliding`, :mod:`.refine` (simulation-error fits through
@@ -23,7 +23,7 @@ from ..data.signals import estimate_derivatives
 from ..errors import DataError, ResamplingWarning
 from .inverse_model import REGRESSORS, RIGID_BODY, fit_inverse_model
 from .model_file import model_file_from_identification
-from .pipeline import identify
+from .pipeline import identify_staged
 from .report import IdentificationReport, IdentificationResult, Stage
 
 __all__ = [
@@ -40,7 +40,7 @@ __all__ = [
     "estimate_derivatives",
     "fit_inverse_model",
     "fit_linear",
-    "identify",
+    "identify_staged",
     "load_columns",
     "model_file_from_identification",
 ]

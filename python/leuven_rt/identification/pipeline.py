@@ -1,4 +1,5 @@
-"""``identify``: the stages in order, on the training part of the record, scored on the rest.
+"""``identify_staged``: the staged fit of the modified Leuven model (its simulation-error
+refinement included); the stages in order, on the training part of the record, scored on the rest.
 
 1. derivatives: zero-phase Butterworth on the position, central differences (:mod:`.data`);
 2. reversals and the presliding range, from the force transition after reversals (:mod:`.motion`);
@@ -86,7 +87,7 @@ def _presliding_range(segments: Segments, force: np.ndarray, noise: float, warni
     return 2.0 * float(lengths[0])
 
 
-def identify(
+def identify_staged(
     data: DataLike,
     *,
     elements: int | None = None,
