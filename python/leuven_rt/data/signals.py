@@ -74,17 +74,21 @@ def noise_floor(force: FloatArray) -> float:
     From differences over a lag L: 1.4826·MAD(f[k+L] − f[k])/√2 (robust, so that steps at reversals
     do not count). For white noise every lag gives σ; noise correlated over a few samples cancels
     in short differences and is underestimated there (at lag 1 by 20–50 % for the coloured noise
-    of real logs), so the lag doubles until the estimate settles (rises by less than PLATEAU), at
-    most to the longest of NOISE_LAGS, where slow changes of the force itself start to count.
+    of real logs), so the lag doubles while the estimate grows. Coloured noise grows less at each
+    doubling and settles (rises by less than PLATEAU); the force's own changes grow more at each
+    doubling: when the growth speeds up, the estimate before it is kept.
     """
-    previous = None
+    estimates: list[float] = []
     for lag in NOISE_LAGS:
         if force.size <= 2 * lag:
             break
         differences = force[lag:] - force[:-lag]
         spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
-        estimate = spread / math.sqrt(2.0)
-        if previous is not None and estimate < (1.0 + PLATEAU) * previous:
-            return previous
-        previous = estimate
-    return previous if previous is not None else 0.0
+        estimates.append(spread / math.sqrt(2.0))
+        if len(estimates) >= 2:
+            growth = estimates[-1] / max(estimates[-2], 1e-300)
+            if growth < 1.0 + PLATEAU:
+                return estimates[-2]
+            if len(estimates) >= 3 and growth >= estimates[-2] / max(estimates[-3], 1e-300):
+                return estimates[-3]
+    return estimates[-1] if estimates else 0.0

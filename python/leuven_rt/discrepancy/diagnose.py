@@ -76,10 +76,13 @@ def diagnose(
     features = compute_features(record)
     folds = blocks(features, settings.folds)
     usable = features.usable
-    # The noise is read from what the baseline leaves: its steps at reversals and its slow
-    # changes are gone, so the long lags that coloured noise needs see noise, not force.
+    # The noise is read from the force and from what the baseline leaves (its steps at reversals
+    # and slow changes gone); each can only overstate it, by the force's own changes that the
+    # differences keep, and neither can exceed what the baseline leaves.
     start = features.force - fit_model(effects, features, usable).predict(features)
-    noise = min(noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2))))
+    noise = min(
+        noise_floor(record.f), noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2)))
+    )
     unit = unit_names(record.units).force
 
     with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
@@ -174,7 +177,9 @@ def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> F
     period that fits where the record dwells can extrapolate badly to where it travels once)."""
     found = find_periods(run.features.sign, run.features.x, run.residual, run.features.usable, noise)
     options = [
-        dataclasses.replace(run.features, scales=dataclasses.replace(run.features.scales, periods=found[:count]))
+        dataclasses.replace(
+            run.features, scales=dataclasses.replace(run.features.scales, periods=found[:count])
+        )
         for count in range(len(found) + 1)
     ]
     if len(options) == 1:

@@ -20,7 +20,7 @@ class Settings:
     """Contiguous blocks of the cross-validation in time."""
     chunks: int = 16
     """Contiguous runs of held-out samples over which a gain must be one-sided."""
-    significance: float = 0.2
+    significance: float = 0.5
     """An effect counts when it lowers the held-out mean squared error by more than this many σ²."""
     loss: float = 0.2
     """... and the runs where it does worse lose less than this share of what the others gain."""
