@@ -9,14 +9,17 @@ only unusable data (too short, not finite, time not increasing) is refused.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..data.records import DataLike, as_motion_data
+from ..data.signals import estimate_derivatives
 from ..modelfile import ModelFile
 from ..params import Params
 from .deploy import deploy
 from .diagnose import DEFAULT_BASELINE, diagnose
+from .refine import refine
 from .report import Diagnosis
 from .settings import Settings
 
@@ -62,4 +65,10 @@ def identify(
     if record.notes:
         report["data_notes"] = list(record.notes)
     deployment = deploy(diagnosis.final_model, diagnosis.features, record.units, report)
-    return Identification(deployment.model, diagnosis, deployment.warnings)
+    # predict's signals (docs/data-and-reports.md#predict): the file is refined on what it will run on
+    motion = estimate_derivatives(record)
+    usable = diagnosis.features.usable
+    model, before, after = refine(deployment.model, motion.x, motion.a, record.dt, record.f, usable)
+    fitted = {**(model.report or {}), "simulation_rms": {"mapped": before, "refined": after}}
+    model = dataclasses.replace(model, report=fitted)
+    return Identification(model, diagnosis, deployment.warnings)
