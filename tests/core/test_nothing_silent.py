@@ -17,6 +17,7 @@ import pytest
 import leuven_rt as lr
 from conftest import MAXWELL, small_log
 from leuven_rt.errors import ConcurrentUseError, DataError, InputError, ParameterError
+from leuven_rt.identification import identify_staged
 
 DT = 1e-4
 V = 1e-3 * np.sin(np.linspace(0.0, 6.0, 200))
@@ -88,7 +89,7 @@ def test_huge_integers_are_parameter_and_input_errors() -> None:
     with pytest.raises(InputError, match=r"`dt`"):
         lr.LeuvenModel(MAXWELL).step(1e-3, 10**400)
     with pytest.raises(InputError, match=r"`cutoff` must be finite"):
-        lr.identify(small_log(), cutoff=10**400)
+        identify_staged(small_log(), cutoff=10**400)
 
 
 @pytest.mark.parametrize(
@@ -127,11 +128,11 @@ def test_identify_refuses_options_that_are_not_numbers() -> None:
     """identify(cutoff='10') was accepted (read as 10 Hz); an asymmetric flag that is not a bool
     was read as truthy."""
     with pytest.raises(InputError, match=r"`cutoff` must be a real number, got '10'"):
-        lr.identify(small_log(), cutoff="10")  # type: ignore[arg-type]
+        identify_staged(small_log(), cutoff="10")  # type: ignore[arg-type]
     with pytest.raises(InputError, match=r"`cutoff` must be a real number, got True"):
-        lr.identify(small_log(), cutoff=True)
+        identify_staged(small_log(), cutoff=True)
     with pytest.raises(InputError, match=r"`asymmetric` must be True or False, got 'no'"):
-        lr.identify(small_log(), asymmetric="no")  # type: ignore[arg-type]
+        identify_staged(small_log(), asymmetric="no")  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("baseline", [None, 3, b"coulomb", {"coulomb": 1}])

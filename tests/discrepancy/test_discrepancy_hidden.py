@@ -100,6 +100,7 @@ def test_report_follows_design_section_4() -> None:
     )  # the generator's MASS (the filtered ẍ is a little low)
     assert not step["where"].startswith("everywhere")  # localised, with its numbers
     assert "rms" in step["where"]
-    assert set(report["unexplained"]) == {"significant", "where"}
+    assert set(report["unexplained"]) == {"significant", "where", "drift"}
+    assert report["settings"] == lr.discrepancy.Settings().to_dict()
     assert report["final_model"]["effects"] == [*BASE, "inertia"]
     assert np.isfinite(report["noise_std"]) and report["noise_std"] > 0

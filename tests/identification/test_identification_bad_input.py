@@ -11,7 +11,8 @@ import pytest
 
 import leuven_rt.cli
 from conftest import small_log as columns
-from leuven_rt import DataError, InputError, identify
+from leuven_rt import DataError, InputError
+from leuven_rt.identification import identify_staged as identify
 
 
 @pytest.mark.parametrize(

@@ -25,10 +25,11 @@ import numpy as np
 import pytest
 
 import leuven_rt.cli
-from leuven_rt import ModelFile, Params, identify, simulate_position
+from leuven_rt import ModelFile, Params, simulate_position
 from leuven_rt.data.scenarios import standard_params
 from leuven_rt.data.synthetic import SyntheticData, make_data
 from leuven_rt.identification import IdentificationResult, MotionData
+from leuven_rt.identification import identify_staged as identify
 
 TOLERANCES = {"Fc": 0.01, "Fs": 0.01, "Fc_neg": 0.01, "Fs_neg": 0.01, "Vs": 0.03, "delta": 0.05, "n": 0.10,
               "sigma2": 0.15}  # fmt: skip
@@ -150,18 +151,16 @@ def test_no_reversals_is_reported() -> None:
     assert np.isnan(result.report.held_out_rms)
 
 
-def test_command_line_writes_the_same_parameters(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_command_line_writes_the_model_file_of_identify(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     data = short_move()
     csv = tmp_path / "log.csv"
     np.savetxt(csv, np.column_stack((data.t, data.x, data.f)), delimiter=",", header="t,x,f", comments="",
                fmt="%.17g")  # fmt: skip
-    out, report = tmp_path / "params.json", tmp_path / "report.json"
-    argv = ["identify", str(csv), "-o", str(out), "--report", str(report), "--elements", "3",
-            "--held-out", "0", "--quiet"]  # fmt: skip
-    assert leuven_rt.cli.main(argv) == 0
-    captured = capsys.readouterr()
-    assert captured.out == ""
-    assert "no reversals" in captured.err  # the report's warnings still reach stderr
-    expected = identify(csv, elements=3, held_out=0.0)
-    assert ModelFile.load(out).friction == expected.params  # the model file holds the parameters
-    assert '"stages"' in report.read_text(encoding="utf-8")
+    out, report = tmp_path / "model.json", tmp_path / "report.json"
+    assert leuven_rt.cli.main(["identify", str(csv), "-o", str(out), "--report", str(report), "--quiet"]) == 0
+    assert capsys.readouterr().out == ""
+    expected = leuven_rt.identify(csv)
+    assert ModelFile.load(out).to_dict() == ModelFile.from_json(expected.model.to_json()).to_dict()
+    assert '"named_effects"' in report.read_text(encoding="utf-8")

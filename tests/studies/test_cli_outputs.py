@@ -12,13 +12,12 @@ import json
 import os
 import re
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 import pytest
 
 import leuven_rt.discrepancy
-import leuven_rt.identification
 from conftest import MAXWELL, small_log
 from leuven_rt import ModelFile, Params
 from leuven_rt._output import check_outputs, image_formats, text_writer, write_files
@@ -26,22 +25,27 @@ from leuven_rt.cli import main
 from leuven_rt.errors import OutputError
 
 
-class _Report:
-    warnings: ClassVar[list[str]] = []
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"held_out_rms": 0.1}
-
+class _Diagnosis:
     def to_json(self) -> str:
-        return json.dumps(self.to_dict())
-
-    def summary(self) -> str:
-        return "fitted"
+        return json.dumps({"named_effects": []})
 
 
 class _Result:
+    """A stand-in of :class:`leuven_rt.discrepancy.Identification` for the log it was given."""
+
     params = Params(**MAXWELL)
-    report = _Report()
+    diagnosis = _Diagnosis()
+    warnings = ()
+
+    def __init__(self, data: Any = None) -> None:
+        report: dict[str, Any] = {"held_out_rms": 0.1}
+        notes = getattr(data, "notes", ())
+        if notes:
+            report["data_notes"] = list(notes)
+        self.model = ModelFile(friction=self.params, units=getattr(data, "units", "linear"), report=report)
+
+    def summary(self) -> str:
+        return "fitted"
 
 
 @pytest.fixture
@@ -49,15 +53,15 @@ def fit(monkeypatch: pytest.MonkeyPatch) -> list[Any]:
     """identify and diagnose replaced by stand-ins; the list records every call."""
     calls: list[Any] = []
 
-    def identify(data: Any, **options: Any) -> _Result:
+    def identify(data: Any, *arguments: Any, **options: Any) -> _Result:
         calls.append(("identify", data))
-        return _Result()
+        return _Result(data)
 
     def diagnose(data: Any, baseline: Any, **options: Any) -> Any:
         calls.append(("diagnose", data))
         raise AssertionError("diagnose ran although its outputs were refused")
 
-    monkeypatch.setattr(leuven_rt.identification, "identify", identify)
+    monkeypatch.setattr(leuven_rt.discrepancy, "identify", identify)
     monkeypatch.setattr(leuven_rt.discrepancy, "diagnose", diagnose)
     return calls
 
@@ -147,7 +151,7 @@ def test_missing_folders_are_made(fit: list[Any], log: Path, tmp_path: Path) -> 
     output, report = tmp_path / "a" / "b" / "p.json", tmp_path / "c" / "r.json"
     assert main(["identify", str(log), "-o", str(output), "--report", str(report), "--quiet"]) == 0
     assert ModelFile.load(output).friction == _Result.params
-    assert json.loads(report.read_text(encoding="utf-8")) == {"held_out_rms": 0.1}
+    assert json.loads(report.read_text(encoding="utf-8")) == {"named_effects": []}
 
 
 @pytest.mark.parametrize("name", ["figure.txt", "figure", "figure.json", "figure.PNG.bak"])

@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 import leuven_rt.discrepancy
-import leuven_rt.identification
 import leuven_rt.prediction
 from conftest import MAXWELL
 from leuven_rt import ModelFile, Params, predict
@@ -157,22 +156,27 @@ def test_predict_on_the_franka_log(tmp_path: Path, capsys: pytest.CaptureFixture
     assert "resampled" in summary["warnings"][0]
 
 
-class _Report:
-    warnings: list[str] = []  # noqa: RUF012 - a stand-in's constant
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"held_out_rms": 0.1}
-
+class _Diagnosis:
     def to_json(self) -> str:
-        return json.dumps(self.to_dict())
-
-    def summary(self) -> str:
-        return "fitted"
+        return json.dumps({"named_effects": []})
 
 
 class _Result:
+    """A stand-in of :class:`leuven_rt.discrepancy.Identification` for the log it was given."""
+
     params = Params(**MAXWELL)
-    report = _Report()
+    diagnosis = _Diagnosis()
+    warnings = ()
+
+    def __init__(self, data: Any = None) -> None:
+        report: dict[str, Any] = {"held_out_rms": 0.1}
+        notes = getattr(data, "notes", ())
+        if notes:
+            report["data_notes"] = list(notes)
+        self.model = ModelFile(friction=self.params, units=getattr(data, "units", "linear"), report=report)
+
+    def summary(self) -> str:
+        return "fitted"
 
 
 def test_identify_and_diagnose_take_columns_and_units(
@@ -183,9 +187,9 @@ def test_identify_and_diagnose_take_columns_and_units(
 ) -> None:
     seen: list[Any] = []
 
-    def identify(data: Any, **options: Any) -> _Result:
+    def identify(data: Any, *arguments: Any, **options: Any) -> _Result:
         seen.append(data)
-        return _Result()
+        return _Result(data)
 
     class _Diagnosis:
         def story(self) -> str:
@@ -195,7 +199,7 @@ def test_identify_and_diagnose_take_columns_and_units(
         seen.append(data)
         return _Diagnosis()
 
-    monkeypatch.setattr(leuven_rt.identification, "identify", identify)
+    monkeypatch.setattr(leuven_rt.discrepancy, "identify", identify)
     monkeypatch.setattr(leuven_rt.discrepancy, "diagnose", diagnose)
     out = tmp_path / "fitted.json"
     columns = ["--columns", "t=time,x=q7,f=tau"]
@@ -215,7 +219,7 @@ def test_identify_keeps_the_loaders_warnings_in_the_model_file(
     capsys: pytest.CaptureFixture[str],
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(leuven_rt.identification, "identify", lambda data, **options: _Result())
+    monkeypatch.setattr(leuven_rt.discrepancy, "identify", lambda data, *arguments, **options: _Result(data))
     log = _csv(
         tmp_path / "mm.csv", "t,x,f", [np.arange(400) * 1e-3, np.linspace(0.0, 8.0, 400), np.ones(400)]
     )

@@ -19,7 +19,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import least_squares
 
-from .._typing import FloatArray
+from .._typing import BoolArray, FloatArray
 from ..errors import ParameterError
 from ..level import PositionLevel, Ripple
 from ..modelfile import ModelFile
@@ -41,7 +41,7 @@ def simulation_residual(
 
 
 def refine(
-    model: ModelFile, x: FloatArray, a: FloatArray, dt: float, force: FloatArray, rows: FloatArray
+    model: ModelFile, x: FloatArray, a: FloatArray, dt: float, force: FloatArray, rows: BoolArray
 ) -> tuple[ModelFile, float, float]:
     """The refined model file (module documentation), and the simulation rms before and after,
     on ``rows`` (a boolean mask)."""
@@ -58,14 +58,15 @@ def refine(
             candidate = unpack(theta)
         except ParameterError:  # outside the model's rules (a level factor reaching 0)
             return np.full(int(mask.sum()), worst)
-        return simulation_residual(candidate, x, a, dt, force)[mask]
+        inside: FloatArray = simulation_residual(candidate, x, a, dt, force)[mask]
+        return inside
 
     before = residual(start)
     rms_before = float(np.sqrt(np.mean(before**2)))
     scale = np.maximum(np.abs(start), 1e-3 * np.maximum(np.abs(upper - lower), 1e-12))
     scale = np.where(np.isfinite(scale), scale, 1.0)
     result = least_squares(residual, start, bounds=(lower, upper), x_scale=scale, max_nfev=EVALUATIONS,
-                           diff_step=1e-4)  # fmt: skip
+                           diff_step=np.full(start.size, 1e-4))  # fmt: skip
     rms_after = float(np.sqrt(np.mean(result.fun**2)))
     if not rms_after < rms_before:
         return model, rms_before, rms_before
