@@ -14,7 +14,7 @@ It works from the data toolkit :mod:`leuven_rt.data`, not from the identificatio
 
 from .._extras import require
 
-require("scipy", "tqdm", extra="analysis", needed_by="leuven_rt.discrepancy")
+require("scipy", "tqdm", "threadpoolctl", extra="analysis", needed_by="leuven_rt.discrepancy")
 
 
 from .diagnose import DEFAULT_BASELINE, diagnose

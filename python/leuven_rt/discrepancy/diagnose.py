@@ -18,6 +18,7 @@ from typing import NoReturn
 
 import numpy as np
 from numpy.typing import NDArray
+from threadpoolctl import threadpool_limits
 from tqdm import tqdm
 
 from .._extras import progress_wanted
@@ -85,7 +86,12 @@ def diagnose(
     )
     unit = unit_names(record.units).force
 
-    with tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar:
+    # One BLAS thread: the fits are many small factorisations, which threads slow down on a busy
+    # machine (a QR 4-10x slower with the cores shared) instead of speeding up.
+    with (
+        threadpool_limits(limits=1, user_api="blas"),
+        tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar,
+    ):
         run = _select(effects, features, folds, noise, settings, bar, unit)
         # A level that changes over the record makes effects look useful that are not there: when
         # the final model still gains from a level drifting in time, the rounds are run again
@@ -140,7 +146,7 @@ def _select(
         if "position_dependence" not in run.effects:
             run.features = _ripples(run, folds, noise)
         scores = _score(run.effects, [(name,) for name in candidates], run.features, folds, bar)
-        best = choose(current, scores, noise, settings)
+        best = _choose_present(current, scores, run.features, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
             # No effect helps alone, yet the model is far from the data: some effects only help
             # together (the Stribeck curve and presliding hysteresis each fit the other's part).
@@ -148,7 +154,8 @@ def _select(
             ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
             pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
-            best = choose(current, _score(run.effects, pairs, run.features, folds, bar), noise, settings)
+            paired = _score(run.effects, pairs, run.features, folds, bar)
+            best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
         added = best.effects[len(run.effects) :]
@@ -169,6 +176,22 @@ def _select(
             run.residuals.append(after)
         current = best
     return run
+
+
+def _choose_present(
+    current: Score, scores: list[Score], features: Features, noise: float, settings: Settings
+) -> Score | None:
+    """:func:`~.scoring.choose`, passing over a candidate whose own coefficients the whole record
+    fits at exactly 0 (held at a bound, such as Fs − Fc ≥ 0): what gained in the blocks is not
+    the effect."""
+    left = list(scores)
+    while (best := choose(current, left, noise, settings)) is not None:
+        fit = fit_model(best.effects, features, features.usable)
+        added = best.effects[len(current.effects) :]
+        if all(any(fit.coefficients[name] != 0.0 for name in fit.groups[effect]) for effect in added):
+            return best
+        left.remove(best)
+    return None
 
 
 def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> Features:

@@ -97,9 +97,10 @@ def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Dri
 
 
 def _fit_linear_part(
-    effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None
+    effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None, shape: Shape | None = None
 ) -> ModelFit:
-    shape = _fit_shape(effects, features, rows) if "stribeck" in effects else None
+    if shape is None and "stribeck" in effects:
+        shape = _fit_shape(effects, features, rows)
     groups = {
         name: tuple(TERMS[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects
     }
@@ -124,19 +125,24 @@ def _fit_driven(effects: tuple[str, ...], features: Features, rows: Rows) -> Mod
     start = _weights(undriven)
     if max(start) <= 0.0:
         return undriven
+    # The Stribeck shape is held at the undriven fit's while the drive is searched (the shape
+    # search costs more than a drive pass), then fitted again with the drive chosen.
     tried: list[tuple[float, ModelFit]] = []
     for n in EXPONENTS:
         drive = Drive(n, start)
         for _ in range(DRIVE_PASSES):
             driven = drive.apply(features)
-            fit = _fit_linear_part(effects, driven, rows, drive)
+            fit = _fit_linear_part(effects, driven, rows, drive, undriven.shape)
             residual = features.force[rows] - fit.predict_columns(driven)[rows]
             tried.append((float(residual @ residual), fit))
             weights = _weights(fit)
             if max(weights) <= 0.0:
                 break
             drive = Drive(n, weights)
-    return min(tried, key=lambda item: item[0])[1]
+    best = min(tried, key=lambda item: item[0])[1]
+    if best.shape is None or best.drive is None:
+        return best
+    return _fit_linear_part(effects, best.drive.apply(features), rows, best.drive)
 
 
 def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shape:
