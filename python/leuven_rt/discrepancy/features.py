@@ -77,9 +77,10 @@ class Features:
     v: FloatArray
     a: FloatArray
     sign: FloatArray
-    """sgn(v): the direction of motion, in [−1, 1]: the sign of the logged velocity where the log
-    has one (0 where it is exactly 0), otherwise read from the position, flipping over ± the
-    position noise (turns inside one quantization step placed by the filtered position); 0 at rest."""
+    """sgn(v): the direction of motion, in [−1, 1], 0 at rest: read from the position, flipping over
+    ± the position noise (turns inside one quantization step placed by the filtered position), or
+    the sign of the logged velocity (0 where it is exactly 0) where the log has one and a
+    Coulomb-viscous fit leaves less with it."""
     rest: FloatArray
     """At rest, the direction of the last motion (±1); 0 while moving."""
     position: FloatArray
@@ -120,23 +121,28 @@ def direction_of_motion(
     return sign
 
 
-def at_rest(data: MotionData, v: FloatArray, resolution: float) -> NDArray[np.bool_]:
-    """Samples where the axis stands still: the logged velocity is exactly 0, or (without one) the
-    position has not changed for at least REST samples while the filtered velocity ``v`` stays
-    below a fifth of one resolution step per REST samples (a slow move inside one encoder step
-    is not a stop)."""
-    if data.v is not None:
-        resting: NDArray[np.bool_] = data.v == 0.0
-        return resting
-    still = np.concatenate([[False], np.diff(data.x) == 0.0])
+def at_rest(x: FloatArray, v: FloatArray, resolution: float, dt: float) -> NDArray[np.bool_]:
+    """Samples where the recorded position ``x`` has not changed for at least REST samples while
+    the filtered velocity ``v`` stays below a fifth of one ``resolution`` step per REST samples
+    (a slow move inside one encoder step is not a stop)."""
+    still = np.concatenate([[False], np.diff(x) == 0.0])
     # the runs of unchanged positions, as (start, stop) pairs
     edges = np.flatnonzero(np.diff(np.concatenate([[0], still.astype(np.int8), [0]])))
-    out = np.zeros(data.samples, dtype=bool)
+    out = np.zeros(x.size, dtype=bool)
     for start, stop in zip(edges[::2], edges[1::2], strict=True):
         if stop - start >= REST:
             out[max(start - 1, 0) : stop] = True
-    slow: NDArray[np.bool_] = np.abs(v) < 0.2 * resolution / (REST * data.dt)
+    slow: NDArray[np.bool_] = np.abs(v) < 0.2 * resolution / (REST * dt)
     return out & slow
+
+
+def _coulomb_viscous_misfit(
+    direction: tuple[FloatArray, FloatArray], v: FloatArray, force: FloatArray, rows: NDArray[np.bool_]
+) -> float:
+    sign, rest = direction
+    design = np.column_stack([sign, rest, v, np.ones_like(v)])[rows]
+    residual = force[rows] - design @ np.linalg.lstsq(design, force[rows], rcond=None)[0]
+    return float(residual @ residual)
 
 
 def _hold(sign: FloatArray, fallback: FloatArray) -> FloatArray:
@@ -164,12 +170,22 @@ def compute_features(data: MotionData, scales: Scales | None = None) -> Features
     usable = np.ones(data.samples, dtype=bool)
     usable[:edge] = False
     usable[data.samples - edge :] = False
-    held = direction_of_motion(data.x, x, scales.play, spread)
-    resting = at_rest(data, v, spread[0])
-    held = _hold(np.sign(data.v), held) if data.v is not None else held
+    from_position = direction_of_motion(data.x, x, scales.play, spread)
+    still = at_rest(data.x, derivatives.v, spread[0], data.dt)
+    sign, rest = np.where(still, 0.0, from_position), np.where(still, np.sign(from_position), 0.0)
+    if data.v is not None:
+        # The logged velocity's sign is the direction where it is exact (a simulator's, a good
+        # observer's); a velocity from central differences leads each start by a sample, and a
+        # noisy one flickers at the turns. The direction kept is the one under which a
+        # Coulomb-viscous fit leaves less (each sample of a late or early flip costs (2·Fc)²).
+        moving = data.v != 0.0
+        held = _hold(np.sign(data.v), from_position)
+        logged = (np.where(moving, held, 0.0), np.where(moving, 0.0, np.sign(held)))
+        sign, rest = min(
+            (sign, rest), logged, key=lambda pair: _coulomb_viscous_misfit(pair, v, data.f, usable)
+        )
     return Features(
-        t=data.t, force=data.f, x=x, v=v, a=a,
-        sign=np.where(resting, 0.0, held), rest=np.where(resting, np.sign(held), 0.0),
+        t=data.t, force=data.f, x=x, v=v, a=a, sign=sign, rest=rest,
         position=(x - scales.middle) / scales.half_stroke, bank=element_deflections(x, scales.deflections),
         scales=scales, travel=segments.travel, usable=usable, dt=data.dt,
     )  # fmt: skip
