@@ -4,9 +4,9 @@ runs it, the thresholds' checks, the noise floor on white and coloured noise, a 
 unexplained, and the real robot logs of ../shared identified without a refusal.
 
 Measured on make_data (the paper's model: Stribeck and presliding hysteresis, σ1 = 30 N·s/m,
-white noise 0.02 N, dt = 0.2 ms, 31 166 samples) with the baseline coulomb,viscous: every seed
-0..9 names exactly {stribeck, presliding_hysteresis}, but the final rms stays near 7x the true
-noise std, so the 1.2x target is not asserted here (the reply of the i11 test branch has the table).
+white noise 0.02 N, dt = 0.2 ms, 31 166 samples) with the baseline coulomb,viscous: seeds 0..2
+name exactly {stribeck, presliding_hysteresis}, but the final rms stays near 7x the true noise
+std (0.137-0.139 N against 0.02 N), so the 1.2x target is not asserted here.
 """
 
 from __future__ import annotations
@@ -33,10 +33,13 @@ BASE = ("coulomb", "viscous")
 
 # --- 1. the paper's generated logs --------------------------------------------------------------
 
-#: Seeds of make_data run here (each diagnose takes over a minute); all ten were measured.
+#: Seeds of make_data run here: each diagnose takes over a minute (up to 7 on a loaded machine).
 SEEDS = (0, 1, 2)
+#: For the slow tests: more than the suite's 300 s, for a shared, loaded machine.
+SLOW = pytest.mark.timeout(900)
 
 
+@SLOW
 @pytest.mark.parametrize("seed", SEEDS)
 def test_make_data_names_the_papers_two_effects(seed: int) -> None:
     synthetic = make_data(seed=seed)
@@ -84,6 +87,7 @@ def ripple() -> Identification:
     return lr.identify(ripple_log(), BASE)
 
 
+@SLOW
 def test_a_position_ripple_is_named_with_its_period(ripple: Identification) -> None:
     diagnosis = ripple.diagnosis
     assert diagnosis.named_effects == ["position_dependence"], diagnosis.story()
@@ -94,6 +98,7 @@ def test_a_position_ripple_is_named_with_its_period(ripple: Identification) -> N
     assert diagnosis.rms_after <= 1.2 * RIPPLE_NOISE, diagnosis.story()
 
 
+@SLOW
 def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
     model = ripple.model
     assert model.level is not None and len(model.level.ripples) == 1  # the level is exercised
@@ -206,6 +211,7 @@ RECORDS = [
 ]
 
 
+@SLOW
 @pytest.mark.parametrize(("name", "joint"), RECORDS, ids=[name for name, _ in RECORDS])
 def test_robot_logs_are_identified_never_refused(name: str, joint: str) -> None:
     path = ROBOTS / name
