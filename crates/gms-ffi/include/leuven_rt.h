@@ -211,9 +211,9 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               struct leuven_rt_compensator **out,
                                               struct leuven_rt_error *error);
 
-// Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
-// and `leuven_rt.Params.save` write; keys of docs/parameters.md) or of a versioned model file
-// (docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
+// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
+// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
+// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
 // Otherwise as `leuven_rt_compensator_create`.
 //
 // A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and

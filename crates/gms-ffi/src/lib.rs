@@ -283,9 +283,9 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
     finish(created, error)
 }
 
-/// Creates a compensator from the text of a parameter file (the JSON that `leuven-rt identify`
-/// and `leuven_rt.Params.save` write; keys of docs/parameters.md) or of a versioned model file
-/// (docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
+/// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
+/// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
+/// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
 /// Otherwise as `leuven_rt_compensator_create`.
 ///
 /// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
