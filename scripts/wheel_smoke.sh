@@ -78,7 +78,7 @@ log = make_data(dt=1e-3, seed=1).data  # 6k samples: a small log
 result = lr.identify(log)
 fitted = result.model.friction
 assert abs(fitted.Fc - 1.0) < 0.5, fitted
-result.model.save("identified.json")
+result.model.save("identified.json", force=True)  # one file per interpreter run, replaced
 assert lr.ModelFile.load("identified.json").friction == fitted
 print(f"identify ok: Fc = {fitted.Fc:.3f} N, Fs = {fitted.Fs:.3f} N, {len(fitted.W)} elements")
 '
