@@ -111,17 +111,19 @@ def predict(
     derivatives = estimate_derivatives(record, None if cutoff is None else real_number(cutoff, "cutoff"))
     dt = record.dt
     x = derivatives.x
-    friction = _friction(chosen, x, dt)
-    f_model = friction + chosen.measurement_force(derivatives.a)
+    friction, f_model = model_forces(chosen, x, derivatives.a, dt)
     rms = float(np.sqrt(np.mean((f_model - record.f) ** 2)))
     return Prediction(t=record.t, f=record.f, f_model=f_model, friction=friction, x=x, rms=rms, units=kind,
                       source=record.source, notes=record.notes)  # fmt: skip
 
 
-def _friction(model: ModelFile, x: FloatArray, dt: float) -> FloatArray:
-    """The friction along ``x``, with the level (docs/model.md#position-dependent-level): the
-    run a compensator in observer mode makes over the same positions."""
-    return simulate_position(model.friction, x, dt, level=model.level)
+def model_forces(model: ModelFile, x: FloatArray, a: FloatArray, dt: float) -> tuple[FloatArray, FloatArray]:
+    """The friction along the filtered position ``x`` (with the level,
+    docs/model.md#position-dependent-level: the run a compensator in observer mode makes over the
+    same positions) and the model's whole force, friction plus the measurement terms at the
+    acceleration ``a``."""
+    friction = simulate_position(model.friction, x, dt, level=model.level)
+    return friction, friction + model.measurement_force(a)
 
 
-__all__ = ["CSV_COLUMNS", "Prediction", "predict"]
+__all__ = ["CSV_COLUMNS", "Prediction", "model_forces", "predict"]

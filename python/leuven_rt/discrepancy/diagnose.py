@@ -49,6 +49,8 @@ class _Selection:
     effects: tuple[str, ...]
     features: Features
     model: ModelFit
+    score: Score
+    """The held-out score of ``effects``."""
     residual: FloatArray
     residuals: list[FloatArray]
     steps: list[Step]
@@ -80,7 +82,8 @@ def diagnose(
     # The noise is read from the force and from what the baseline leaves (its steps at reversals
     # and slow changes gone); each can only overstate it, by the force's own changes that the
     # differences keep, and neither can exceed what the baseline leaves.
-    start = features.force - fit_model(effects, features, usable).predict(features)
+    baseline_fit = fit_model(effects, features, usable)
+    start = features.force - baseline_fit.predict(features)
     noise = min(
         noise_floor(record.f), noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2)))
     )
@@ -92,21 +95,18 @@ def diagnose(
         threadpool_limits(limits=1, user_api="blas"),
         tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar,
     ):
-        run = _select(effects, features, folds, noise, settings, bar, unit)
+        run = _select(effects, features, folds, noise, settings, bar, unit, baseline_fit)
         # A level that changes over the record makes effects look useful that are not there: when
         # the final model still gains from a level drifting in time, the rounds are run again
         # with the drift fitted alongside, and the drift is reported as unexplained.
         drift = significant(
-            cross_validate(run.effects, run.features, folds),
+            run.score,
             cross_validate((*run.effects, DRIFT.name), run.features, folds),
             noise,
             dataclasses.replace(settings, significance=settings.drift),
         )
         if drift:
             run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
-
-    def rms(residual: FloatArray) -> float:
-        return float(np.sqrt(np.mean(residual[usable] ** 2)))
 
     residual = run.residual
     excess = float(np.mean(residual[usable] ** 2)) - noise**2
@@ -115,7 +115,7 @@ def diagnose(
         where = f"{DRIFT.missing} (a drift, outside the catalogue); {where}"
     return Diagnosis(
         samples=record.samples, noise_std=noise, baseline=effects,
-        rms_before=rms(run.residuals[0]), rms_after=rms(residual), steps=run.steps,
+        rms_before=_rms(run.residuals[0], usable), rms_after=_rms(residual, usable), steps=run.steps,
         unexplained_significant=bool(drift or excess > settings.unexplained * noise**2),
         unexplained_where=where, drift=drift, settings=settings,
         final_model=run.model, regions_before=regions(run.features, run.residuals[0]),
@@ -132,20 +132,29 @@ def _select(
     settings: Settings,
     bar: tqdm[NoReturn],
     unit: str,
+    model: ModelFit | None = None,
 ) -> _Selection:
-    """The rounds from ``effects``: add the best significant effect (or pair) until none is."""
+    """The rounds from ``effects`` (``model``: their fit, when already made): add the best
+    significant effect (or pair) until none is."""
     usable = features.usable
-    model = fit_model(effects, features, usable)
+    if model is None:
+        model = fit_model(effects, features, usable)
     residual = features.force - model.predict(features)
-    run = _Selection(effects, features, model, residual, [residual], [])
     current = cross_validate(effects, features, folds) if effects else zero_score(features, folds)
+    run = _Selection(effects, features, model, current, residual, [residual], [])
     while True:
         candidates = [name for name in CATALOGUE if name not in run.effects]
         if not candidates:
             break
-        if "position_dependence" not in run.effects:
-            run.features = _ripples(run, folds, noise)
-        scores = _score(run.effects, [(name,) for name in candidates], run.features, folds, bar)
+        known: dict[str, Score] = {}  # scores the ripple search has already made
+        if "position_dependence" in candidates:
+            run.features, position = _ripples(run, folds, noise)
+            if position is not None:
+                known["position_dependence"] = position
+        fresh = iter(
+            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar)
+        )
+        scores = [known[name] if name in known else next(fresh) for name in candidates]  # catalogue order
         best = _choose_present(current, scores, run.features, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
             # No effect helps alone, yet the model is far from the data: some effects only help
@@ -158,10 +167,12 @@ def _select(
             best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
-        added = best.effects[len(run.effects) :]
+        best_score, best_fit = best
+        added = best_score.effects[len(run.effects) :]
         for name in added:  # a pair is added one effect at a time, each step with its numbers
             effects_now = (*run.effects, name)
-            model = fit_model(effects_now, run.features, usable)
+            same = effects_now == best_fit.effects
+            model = best_fit if same else fit_model(effects_now, run.features, usable)
             after = run.features.force - model.predict(run.features)
             run.steps.append(
                 Step(
@@ -174,30 +185,31 @@ def _select(
             )
             run.effects, run.model, run.residual = effects_now, model, after
             run.residuals.append(after)
-        current = best
+        current = run.score = best_score
     return run
 
 
 def _choose_present(
     current: Score, scores: list[Score], features: Features, noise: float, settings: Settings
-) -> Score | None:
+) -> tuple[Score, ModelFit] | None:
     """:func:`~.scoring.choose`, passing over a candidate whose own coefficients the whole record
     fits at exactly 0 (held at a bound, such as Fs − Fc ≥ 0): what gained in the blocks is not
-    the effect."""
+    the effect. Returns the candidate with its fit on the whole record."""
     left = list(scores)
     while (best := choose(current, left, noise, settings)) is not None:
         fit = fit_model(best.effects, features, features.usable)
         added = best.effects[len(current.effects) :]
         if all(any(fit.coefficients[name] != 0.0 for name in fit.groups[effect]) for effect in added):
-            return best
+            return best, fit
         left.remove(best)
     return None
 
 
-def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> Features:
+def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> tuple[Features, Score | None]:
     """The features with the ripple periods of the position effect: those found in what the model
     leaves now, as many of them (none, the first, both) as predict the held-out blocks best (a
-    period that fits where the record dwells can extrapolate badly to where it travels once)."""
+    period that fits where the record dwells can extrapolate badly to where it travels once);
+    and the held-out score of the model with the position effect on them, when it was made."""
     found = find_periods(run.features.sign, run.features.x, run.residual, run.features.usable, noise)
     options = [
         dataclasses.replace(
@@ -206,9 +218,11 @@ def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> F
         for count in range(len(found) + 1)
     ]
     if len(options) == 1:
-        return options[0]
+        return options[0], None
     effects = (*run.effects, "position_dependence")
-    return min(options, key=lambda features: cross_validate(effects, features, folds).mse)
+    scored = [(cross_validate(effects, features, folds), features) for features in options]
+    score, features = min(scored, key=lambda pair: pair[0].mse)
+    return features, score
 
 
 def _score(

@@ -127,22 +127,22 @@ def _fit_driven(effects: tuple[str, ...], features: Features, rows: Rows) -> Mod
         return undriven
     # The Stribeck shape is held at the undriven fit's while the drive is searched (the shape
     # search costs more than a drive pass), then fitted again with the drive chosen.
-    tried: list[tuple[float, ModelFit]] = []
+    tried: list[tuple[float, ModelFit, Features]] = []
     for n in EXPONENTS:
         drive = Drive(n, start)
         for _ in range(DRIVE_PASSES):
             driven = drive.apply(features)
             fit = _fit_linear_part(effects, driven, rows, drive, undriven.shape)
             residual = features.force[rows] - fit.predict_columns(driven)[rows]
-            tried.append((float(residual @ residual), fit))
+            tried.append((float(residual @ residual), fit, driven))
             weights = _weights(fit)
             if max(weights) <= 0.0:
                 break
             drive = Drive(n, weights)
-    best = min(tried, key=lambda item: item[0])[1]
-    if best.shape is None or best.drive is None:
+    _, best, driven = min(tried, key=lambda item: item[0])
+    if best.shape is None:
         return best
-    return _fit_linear_part(effects, best.drive.apply(features), rows, best.drive)
+    return _fit_linear_part(effects, driven, rows, best.drive)
 
 
 def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shape:

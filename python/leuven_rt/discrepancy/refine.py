@@ -24,7 +24,7 @@ from ..errors import ParameterError
 from ..level import PositionLevel, Ripple
 from ..modelfile import ModelFile
 from ..params import Params
-from ..simulation import simulate_position
+from ..prediction import model_forces
 from .deploy import MARGIN
 
 #: Budget of the refinement, in simulations of the record.
@@ -35,8 +35,7 @@ def simulation_residual(
     model: ModelFile, x: FloatArray, a: FloatArray, dt: float, force: FloatArray
 ) -> FloatArray:
     """The model file's force along the filtered position ``x`` (acceleration ``a``) minus ``force``."""
-    friction = simulate_position(model.friction, x, dt, level=model.level)
-    out: FloatArray = friction + model.measurement_force(a) - force
+    out: FloatArray = model_forces(model, x, a, dt)[1] - force
     return out
 
 
