@@ -6,12 +6,15 @@ so that every test can pass them to either implementation or to ``Params``.
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
+
+from leuven_rt import ModelFile, Params
 
 #: The fuzzing suite's budget (tests/fuzz): a fixed number of inputs per test, drawn from a fixed
 #: seed (derandomize), so that every run tries the same inputs and the suite stays within about a
@@ -156,3 +159,27 @@ def maxwell() -> dict[str, Any]:
 @pytest.fixture
 def lugre() -> dict[str, Any]:
     return dict(LUGRE)
+
+
+class _DiagnosisStandIn:
+    def to_json(self) -> str:
+        return json.dumps({"named_effects": []})
+
+
+class IdentifyStandIn:
+    """A stand-in of :class:`leuven_rt.discrepancy.Identification` for the log it was given, for
+    the command-line tests that replace the fit (MAXWELL's parameters, the log's units and notes)."""
+
+    params = Params(**MAXWELL)
+    diagnosis = _DiagnosisStandIn()
+    warnings = ()
+
+    def __init__(self, data: Any = None) -> None:
+        report: dict[str, Any] = {"held_out_rms": 0.1}
+        notes = getattr(data, "notes", ())
+        if notes:
+            report["data_notes"] = list(notes)
+        self.model = ModelFile(friction=self.params, units=getattr(data, "units", "linear"), report=report)
+
+    def summary(self) -> str:
+        return "fitted"

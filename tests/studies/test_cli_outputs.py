@@ -19,33 +19,11 @@ import pytest
 
 import leuven_rt.discrepancy
 from conftest import MAXWELL, small_log
+from conftest import IdentifyStandIn as _Result
 from leuven_rt import ModelFile, Params
 from leuven_rt._output import check_outputs, image_formats, text_writer, write_files
 from leuven_rt.cli import main
 from leuven_rt.errors import OutputError
-
-
-class _Diagnosis:
-    def to_json(self) -> str:
-        return json.dumps({"named_effects": []})
-
-
-class _Result:
-    """A stand-in of :class:`leuven_rt.discrepancy.Identification` for the log it was given."""
-
-    params = Params(**MAXWELL)
-    diagnosis = _Diagnosis()
-    warnings = ()
-
-    def __init__(self, data: Any = None) -> None:
-        report: dict[str, Any] = {"held_out_rms": 0.1}
-        notes = getattr(data, "notes", ())
-        if notes:
-            report["data_notes"] = list(notes)
-        self.model = ModelFile(friction=self.params, units=getattr(data, "units", "linear"), report=report)
-
-    def summary(self) -> str:
-        return "fitted"
 
 
 @pytest.fixture

@@ -15,6 +15,7 @@ import pytest
 import leuven_rt.discrepancy
 import leuven_rt.prediction
 from conftest import MAXWELL
+from conftest import IdentifyStandIn as _Result
 from leuven_rt import ModelFile, Params, predict
 from leuven_rt.cli import main
 from leuven_rt.data.synthetic import SyntheticData, make_data
@@ -154,29 +155,6 @@ def test_predict_on_the_franka_log(tmp_path: Path, capsys: pytest.CaptureFixture
     summary = json.loads(capsys.readouterr().out)
     assert summary["units"] == "rotary" and summary["samples"] > 20_000 and np.isfinite(summary["rms"])
     assert "resampled" in summary["warnings"][0]
-
-
-class _Diagnosis:
-    def to_json(self) -> str:
-        return json.dumps({"named_effects": []})
-
-
-class _Result:
-    """A stand-in of :class:`leuven_rt.discrepancy.Identification` for the log it was given."""
-
-    params = Params(**MAXWELL)
-    diagnosis = _Diagnosis()
-    warnings = ()
-
-    def __init__(self, data: Any = None) -> None:
-        report: dict[str, Any] = {"held_out_rms": 0.1}
-        notes = getattr(data, "notes", ())
-        if notes:
-            report["data_notes"] = list(notes)
-        self.model = ModelFile(friction=self.params, units=getattr(data, "units", "linear"), report=report)
-
-    def summary(self) -> str:
-        return "fitted"
 
 
 def test_identify_and_diagnose_take_columns_and_units(
