@@ -9,7 +9,7 @@ use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
 use crate::level::Level;
-use crate::math::abs_pow;
+use crate::math::Power;
 use crate::solver::{Residual, Solution};
 use crate::stribeck::Stribeck;
 
@@ -27,7 +27,10 @@ pub enum Scheme {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<H> {
     stribeck: Stribeck,
-    n: f64,
+    /// n, classified once (integer and half-integer exponents are evaluated without `pow`).
+    n: Power,
+    /// n − 1, the exponent of dφ/du = n·|u|ⁿ⁻¹ in the implicit solver's Newton iteration.
+    n_less_one: Power,
     sigma1: f64,
     sigma2: f64,
     hysteresis: H,
@@ -71,7 +74,8 @@ impl<H: Hysteresis> Params<H> {
         }
         Ok(Self {
             stribeck,
-            n,
+            n: Power::new(n),
+            n_less_one: Power::new(n - 1.0),
             sigma1,
             sigma2,
             hysteresis,
@@ -84,7 +88,7 @@ impl<H: Hysteresis> Params<H> {
     }
     /// Transition-curve exponent n.
     pub fn n(&self) -> f64 {
-        self.n
+        self.n.exponent()
     }
     /// Micro-viscous coefficient σ1.
     pub fn sigma1(&self) -> f64 {
@@ -131,7 +135,7 @@ impl<H: Hysteresis> Params<H> {
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
         let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);
-        v - libm::fabs(v) * libm::copysign(abs_pow(u, self.n), u)
+        v - libm::fabs(v) * libm::copysign(self.n.abs(u), u)
     }
 
     /// One step with velocity input `v` held over `dt`; returns the friction force.
@@ -279,6 +283,7 @@ impl<H: Hysteresis> Params<H> {
             dt_abs_v: dt * libm::fabs(v),
             inverse_g: 1.0 / self.stribeck.g(v),
             n: self.n,
+            n_less_one: self.n_less_one,
         }
     }
 

@@ -17,7 +17,7 @@
 //! most 2N + 1 evaluations of Fh; in practice one or two.
 
 use crate::hysteresis::{Hysteresis, Trial};
-use crate::math::abs_pow;
+use crate::math::Power;
 
 /// Upper bound on the scalar Newton/bisection iterations on one linear piece (used only when
 /// n ∉ {1, 2}). The bracket at least halves every two iterations, and 55 halvings shrink any
@@ -47,13 +47,15 @@ pub(crate) struct Residual<'a, H: Hysteresis> {
     /// 1/g(v).
     pub inverse_g: f64,
     /// Transition exponent n.
-    pub n: f64,
+    pub n: Power,
+    /// n − 1, for the slope of φ in the Newton iteration.
+    pub n_less_one: Power,
 }
 
 /// φ(u) = sgn(u)·|u|ⁿ.
 #[inline]
-fn phi(u: f64, n: f64) -> f64 {
-    libm::copysign(abs_pow(u, n), u)
+fn phi(u: f64, n: Power) -> f64 {
+    libm::copysign(n.abs(u), u)
 }
 
 /// Where the root of R lies relative to one linear piece of Fh.
@@ -144,14 +146,14 @@ impl<H: Hysteresis> Residual<'_, H> {
         let s = if beta == 0.0 {
             // Every element saturated: φ is constant and R has slope 1.
             -r
-        } else if self.n == 1.0 {
-            -r / (1.0 + c * beta)
-        } else if self.n == 2.0 {
-            quadratic_root(r, q, alpha, beta, c)
         } else {
-            match self.newton_on_piece(r, q, alpha, beta, s_end) {
-                Some(s) => s,
-                None => return OnPiece::Beyond(end),
+            match self.n {
+                Power::One => -r / (1.0 + c * beta),
+                Power::Two => quadratic_root(r, q, alpha, beta, c),
+                _ => match self.newton_on_piece(r, q, alpha, beta, s_end) {
+                    Some(s) => s,
+                    None => return OnPiece::Beyond(end),
+                },
             }
         };
         // The extended piece is monotone, so a root past the end means the root is beyond it.
@@ -170,6 +172,7 @@ impl<H: Hysteresis> Residual<'_, H> {
     /// The bracket therefore halves at least every two steps, which bounds the iterations.
     fn newton_on_piece(&self, r: f64, q: f64, alpha: f64, beta: f64, s_end: f64) -> Option<f64> {
         let (n, c) = (self.n, self.dt_abs_v);
+        let n_value = n.exponent();
         let p = |s: f64| (s + q) + c * phi(alpha + beta * s, n);
         let p_end = p(s_end);
         if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
@@ -187,13 +190,13 @@ impl<H: Hysteresis> Residual<'_, H> {
             let u = alpha + beta * s;
             // dφ/du = n·|u|ⁿ⁻¹, infinite at u = 0 when n < 1: no Newton step there.
             let slope = if u == 0.0 {
-                if n > 1.0 {
+                if n_value > 1.0 {
                     1.0
                 } else {
                     f64::INFINITY
                 }
             } else {
-                1.0 + c * beta * n * abs_pow(u, n) / libm::fabs(u)
+                1.0 + c * beta * n_value * self.n_less_one.abs(u)
             };
             let newton = s - value / slope;
             if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
