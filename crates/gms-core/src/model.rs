@@ -288,6 +288,14 @@ impl<H: Hysteresis> Params<H> {
     }
 
     /// The step proper, for inputs already checked.
+    ///
+    /// A diverging step (non-finite z⁺ or force) must leave the state untouched. Committing
+    /// into a copy of the memory and storing it back costs two copies of the memory per step
+    /// (2 × 256 bytes at N = 32), so the force's finiteness is decided before committing
+    /// instead: |Fh(z⁺)| ≤ B (`force_bound`), hence |F| ≤ B + |σ1·(z⁺ − z)/dt| + |σ2·v|, and
+    /// when that sum is below half the f64 range, rounding in the sum of Fh cannot carry F to
+    /// infinity either, so the memory is committed in place. Only forces near the f64 range
+    /// (or a hysteresis without a bound) take the copying path.
     #[inline]
     fn advance(
         &self,
@@ -304,14 +312,21 @@ impl<H: Hysteresis> Params<H> {
         if !z_next.is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
-        let mut memory = state.memory;
-        let force = self.hysteresis.commit(&mut memory, z_next)
-            + self.sigma1 * (z_next - z) / dt
-            + self.sigma2 * v;
-        if !force.is_finite() {
-            return Err(Error::Diverged { index: 0 });
-        }
-        state.memory = memory;
+        let micro_viscous = self.sigma1 * (z_next - z) / dt;
+        let viscous = self.sigma2 * v;
+        let bound =
+            self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
+        let force = if bound < 0.5 * f64::MAX {
+            self.hysteresis.commit(&mut state.memory, z_next) + micro_viscous + viscous
+        } else {
+            let mut memory = state.memory;
+            let force = self.hysteresis.commit(&mut memory, z_next) + micro_viscous + viscous;
+            if !force.is_finite() {
+                return Err(Error::Diverged { index: 0 });
+            }
+            state.memory = memory;
+            force
+        };
         state.z = z_next;
         Ok(force)
     }

@@ -55,6 +55,8 @@ pub struct MaxwellSlip<const N: usize> {
     w: [f64; N],
     delta: [f64; N],
     stiffness: [f64; N],
+    /// ΣW, the largest |Fh|, summed once here rather than on every step's finiteness check.
+    total: f64,
 }
 
 impl<const N: usize> MaxwellSlip<N> {
@@ -79,7 +81,8 @@ impl<const N: usize> MaxwellSlip<N> {
                 });
             }
         }
-        if !w.iter().sum::<f64>().is_finite() {
+        let total: f64 = w.iter().sum();
+        if !total.is_finite() {
             let (index, largest) = largest(&w);
             return Err(Error::ForceSumOverflow { index, largest });
         }
@@ -120,6 +123,7 @@ impl<const N: usize> MaxwellSlip<N> {
             w,
             delta,
             stiffness,
+            total,
         })
     }
 
@@ -224,7 +228,14 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
     }
 
     fn max_force(&self) -> f64 {
-        self.w.iter().sum()
+        self.total
+    }
+
+    /// ΣW, whatever z: each element's force kᵢ·eᵢ has |eᵢ| ≤ Δᵢ, so |Fh| ≤ Σ kᵢ·Δᵢ = ΣW up to
+    /// rounding of relative order N·ε, which the step's margin (half the f64 range) covers.
+    #[inline]
+    fn force_bound(&self, _z: f64) -> f64 {
+        self.total
     }
 
     fn check_memory(&self, zeta: &[f64; N], z: f64) -> Result<(), Error> {

@@ -52,6 +52,18 @@ pub trait Hysteresis {
     /// sup |Fh| over all z (infinite for a linear spring).
     fn max_force(&self) -> f64;
 
+    /// A bound on |Fh(z)| for every memory a channel can hold at deflection `z`, as `commit`
+    /// computes it (rounding included, for bounds below half the f64 range).
+    ///
+    /// The step uses it to know, before committing, that the committed force will be finite,
+    /// so that it can commit in place and still leave the state untouched on a divergence.
+    /// The default, +∞, means "no bound known": the step then commits into a copy of the
+    /// memory and checks afterwards.
+    fn force_bound(&self, z: f64) -> f64 {
+        let _ = z;
+        f64::INFINITY
+    }
+
     /// Checks a memory written from outside (not produced by stepping) against deflection `z`:
     /// every element within its window, to a rounding tolerance. The default accepts any
     /// memory, which suits a hysteresis without one.
