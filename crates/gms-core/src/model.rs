@@ -319,15 +319,30 @@ impl<H: Hysteresis> Params<H> {
         let force = if bound < 0.5 * f64::MAX {
             self.hysteresis.commit(&mut state.memory, z_next) + micro_viscous + viscous
         } else {
-            let mut memory = state.memory;
-            let force = self.hysteresis.commit(&mut memory, z_next) + micro_viscous + viscous;
-            if !force.is_finite() {
-                return Err(Error::Diverged { index: 0 });
-            }
-            state.memory = memory;
-            force
+            self.commit_copy(&mut state.memory, z_next, micro_viscous, viscous)?
         };
         state.z = z_next;
+        Ok(force)
+    }
+
+    /// The commit of a step whose force may not be finite: into a copy of the memory, stored
+    /// back only if the force is finite. Out of line, so that the in-place path keeps its own
+    /// inlined commit.
+    #[cold]
+    #[inline(never)]
+    fn commit_copy(
+        &self,
+        memory: &mut H::Memory,
+        z_next: f64,
+        micro_viscous: f64,
+        viscous: f64,
+    ) -> Result<f64, Error> {
+        let mut copy = *memory;
+        let force = self.hysteresis.commit(&mut copy, z_next) + micro_viscous + viscous;
+        if !force.is_finite() {
+            return Err(Error::Diverged { index: 0 });
+        }
+        *memory = copy;
         Ok(force)
     }
 

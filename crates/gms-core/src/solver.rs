@@ -16,7 +16,7 @@
 //! moves to that breakpoint. A bank of N elements has at most 2N breakpoints, so a step costs at
 //! most 2N + 1 evaluations of Fh; in practice one or two.
 
-use crate::hysteresis::{Hysteresis, Trial};
+use crate::hysteresis::{Hysteresis, Piece};
 use crate::math::Power;
 
 /// Upper bound on the scalar Newton/bisection iterations on one linear piece (used only when
@@ -79,10 +79,14 @@ impl<H: Hysteresis> Residual<'_, H> {
     }
 
     /// The unique root of R, bracketed by z and the explicit Euler point.
+    ///
+    /// Each iterate evaluates Fh (`force`), and then, only if it is not the root, the one piece
+    /// of Fh on the side where the root lies (`piece`): the sign of R tells the side, so the
+    /// other side's slope and breakpoint are never computed.
     pub fn solve(&self) -> Solution {
         let mut y = self.z;
-        let mut trial = self.hysteresis.trial(self.memory, y);
-        let mut r = self.value(y, trial.force);
+        let mut force = self.hysteresis.force(self.memory, y);
+        let mut r = self.value(y, force);
         let mut iterations = 1;
         if r == 0.0 {
             return Solution { z: y, iterations };
@@ -94,7 +98,8 @@ impl<H: Hysteresis> Residual<'_, H> {
             (explicit, y)
         };
         loop {
-            match self.solve_piece(y, r, &trial, lo, hi) {
+            let piece = self.hysteresis.piece(self.memory, y, r < 0.0);
+            match self.solve_piece(y, r, force, piece, lo, hi) {
                 OnPiece::Root(root) => {
                     return Solution {
                         z: root,
@@ -109,8 +114,8 @@ impl<H: Hysteresis> Residual<'_, H> {
                 }
                 OnPiece::Beyond(end) => {
                     y = end;
-                    trial = self.hysteresis.trial(self.memory, y);
-                    r = self.value(y, trial.force);
+                    force = self.hysteresis.force(self.memory, y);
+                    r = self.value(y, force);
                     iterations += 1;
                     if r == 0.0 {
                         return Solution { z: y, iterations };
@@ -125,19 +130,20 @@ impl<H: Hysteresis> Residual<'_, H> {
         }
     }
 
-    /// On the piece of Fh next to y in the direction of the root (R(y) = r ≠ 0), within the
-    /// bracket [lo, hi]: the root, or the end of the piece if the root lies beyond it.
+    /// On the piece of Fh next to y in the direction of the root (R(y) = r ≠ 0, Fh(y) =
+    /// `force`), within the bracket [lo, hi]: the root, or the end of the piece if the root
+    /// lies beyond it.
     #[inline]
-    fn solve_piece(&self, y: f64, r: f64, trial: &Trial, lo: f64, hi: f64) -> OnPiece {
+    fn solve_piece(&self, y: f64, r: f64, force: f64, piece: Piece, lo: f64, hi: f64) -> OnPiece {
         // On the piece, Fh(y + s) = Fh(y) + K·s, so u(s) = α + β·s.
         let rightward = r < 0.0;
-        let (slope, end) = if rightward {
-            (trial.slope_right, trial.right.min(hi))
+        let end = if rightward {
+            piece.end.min(hi)
         } else {
-            (trial.slope_left, trial.left.max(lo))
+            piece.end.max(lo)
         };
-        let alpha = trial.force * self.inverse_g;
-        let beta = slope * self.inverse_g;
+        let alpha = force * self.inverse_g;
+        let beta = piece.slope * self.inverse_g;
         let c = self.dt_abs_v;
         let s_end = end - y;
         // R(y + s) = s + q + c·φ(α + β·s). Written with q, not r − c·φ(α): when c·φ(α) is huge
