@@ -180,6 +180,20 @@ impl<H: Hysteresis> Residual<'_, H> {
         let (n, c) = (self.n, self.dt_abs_v);
         let n_value = n.exponent();
         let p = |s: f64| (s + q) + c * phi(alpha + beta * s, n);
+        // P and its slope at s from one power: |u|ⁿ⁻¹ gives both dφ/du = n·|u|ⁿ⁻¹ and
+        // |u|ⁿ = |u|ⁿ⁻¹·|u| (exactly φ's rounding for n = 1.5 and 3, within an ulp or two
+        // otherwise). dφ/du is infinite at u = 0 when n < 1: no Newton step there.
+        let value_and_slope = |s: f64| {
+            let u = alpha + beta * s;
+            if u == 0.0 {
+                let slope = if n_value > 1.0 { 1.0 } else { f64::INFINITY };
+                return ((s + q) + c * u, slope);
+            }
+            let magnitude = libm::fabs(u);
+            let power = self.n_less_one.of(magnitude);
+            let phi = libm::copysign(power * magnitude, u);
+            ((s + q) + c * phi, 1.0 + c * beta * n_value * power)
+        };
         let p_end = p(s_end);
         if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
             return None;
@@ -187,23 +201,13 @@ impl<H: Hysteresis> Residual<'_, H> {
         // Bracket [a, b] in s with P(a) < 0 < P(b).
         let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
         let tolerance = 4.0 * f64::EPSILON * (libm::fabs(self.z) + libm::fabs(s_end));
-        let (mut s, mut value) = (0.0, r);
+        // P(0) = r is known; its slope is not.
+        let (mut s, mut value, mut slope) = (0.0, r, value_and_slope(0.0).1);
         let mut checkpoint = b - a;
         for iteration in 0..MAX_ITERATIONS {
             if b - a <= tolerance {
                 break;
             }
-            let u = alpha + beta * s;
-            // dφ/du = n·|u|ⁿ⁻¹, infinite at u = 0 when n < 1: no Newton step there.
-            let slope = if u == 0.0 {
-                if n_value > 1.0 {
-                    1.0
-                } else {
-                    f64::INFINITY
-                }
-            } else {
-                1.0 + c * beta * n_value * self.n_less_one.abs(u)
-            };
             let newton = s - value / slope;
             if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
                 // A tiny step is not proof of a root where the slope is huge: accept it only
@@ -228,7 +232,7 @@ impl<H: Hysteresis> Residual<'_, H> {
             } else {
                 0.5 * (a + b)
             };
-            value = p(s);
+            (value, slope) = value_and_slope(s);
             if value == 0.0 {
                 return Some(s);
             }
