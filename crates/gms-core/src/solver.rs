@@ -15,6 +15,14 @@
 //! safeguarded Newton otherwise. If the root of the piece lies beyond the piece's end, the walk
 //! moves to that breakpoint. A bank of N elements has at most 2N breakpoints, so a step costs at
 //! most 2N + 1 evaluations of Fh; in practice one or two.
+//!
+//! An evaluation is one pass over the elements for Fh at the iterate and, unless the iterate is
+//! the root, one for the piece on the side where R says the root lies ([`Hysteresis::piece`]);
+//! the slope and breakpoint on the other side are never needed.
+//!
+//! The exponent n arrives classified ([`Power`], once per parameter set): integer and
+//! half-integer n are products and a square root, and only other n call `pow`. The Newton
+//! iteration takes P and its slope at a point from the single power |u|ⁿ⁻¹.
 
 use crate::hysteresis::{Hysteresis, Piece};
 use crate::math::Power;
@@ -29,8 +37,9 @@ pub const MAX_ITERATIONS: u32 = 128;
 pub struct Solution {
     /// z at the end of the step.
     pub z: f64,
-    /// Evaluations of the hysteresis trial (each O(N)), the one at z included; at most 2N + 1
-    /// for N Maxwell-slip elements, 2 for a linear spring.
+    /// Evaluations of the hysteresis map (each O(N): Fh at the iterate and the piece toward the
+    /// root), the one at z included; at most 2N + 1 for N Maxwell-slip elements, 2 for a linear
+    /// spring.
     pub iterations: u32,
 }
 
