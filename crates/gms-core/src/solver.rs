@@ -207,7 +207,7 @@ impl<H: Hysteresis> Residual<'_, H> {
         if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
             return None;
         }
-        // Bracket [a, b] in s with P(a) < 0 < P(b).
+        // Bracket [a, b] in s with P(a) ≤ 0 ≤ P(b) (an end is 0 only at s_end).
         let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
         let tolerance = 4.0 * f64::EPSILON * (libm::fabs(self.z) + libm::fabs(s_end));
         // P(0) = r is known; its slope is not.
@@ -220,9 +220,16 @@ impl<H: Hysteresis> Residual<'_, H> {
             let newton = s - value / slope;
             if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
                 // A tiny step is not proof of a root where the slope is huge: accept it only
-                // if P changes sign within the tolerance around it.
+                // if P changes sign within the tolerance around it. P is increasing and
+                // P(a) ≤ 0 ≤ P(b), so a point at or beyond a bracket end needs no evaluation:
+                // usually the last iterate is one end, within the tolerance of the new one.
                 let (below, above) = (newton - tolerance, newton + tolerance);
-                let (p_below, p_above) = (p(below), p(above));
+                let p_below = if below <= a {
+                    f64::NEG_INFINITY
+                } else {
+                    p(below)
+                };
+                let p_above = if above >= b { f64::INFINITY } else { p(above) };
                 if p_below <= 0.0 && p_above >= 0.0 {
                     return Some(clamp(newton, a, b));
                 }
