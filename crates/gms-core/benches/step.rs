@@ -1,4 +1,6 @@
-//! Nanoseconds per single-channel step, for N = 1 (LuGre), 4, 10, 32 and both schemes.
+//! Nanoseconds per single-channel step, for N = 1 (LuGre), 4, 10, 32 and both schemes, and for
+//! N = 10 at transition exponents other than n = 2: 1.5 (half-integer), 3 and 4 (integer) and
+//! 0.7 (general, through `pow`), which take different paths through the power and the solver.
 //!
 //! Each iteration is one `step` call on one channel, fed from a 1 kHz, 5 Hz sine of 10 mm/s
 //! amplitude (reversals, presliding and sliding alike), so the figure is the average over a cycle.
@@ -61,6 +63,9 @@ fn steps(c: &mut Criterion) {
     bench_params(c, "N=10", &maxwell::<10>(2.0));
     bench_params(c, "N=32", &maxwell::<32>(2.0));
     bench_params(c, "N=10 n=1.5", &maxwell::<10>(1.5));
+    bench_params(c, "N=10 n=3", &maxwell::<10>(3.0));
+    bench_params(c, "N=10 n=4", &maxwell::<10>(4.0));
+    bench_params(c, "N=10 n=0.7", &maxwell::<10>(0.7));
 }
 
 criterion_group!(benches, steps);

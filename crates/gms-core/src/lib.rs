@@ -44,7 +44,7 @@ mod stribeck;
 
 pub use compensator::{evaluation_bound, Compensator, Mode};
 pub use error::{Error, Field, InChannel, Shown};
-pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Trial, MIN_DELTA_RATIO};
+pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Piece, Trial, MIN_DELTA_RATIO};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
 pub use level::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};

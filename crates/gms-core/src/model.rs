@@ -9,7 +9,7 @@ use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
 use crate::level::Level;
-use crate::math::abs_pow;
+use crate::math::Power;
 use crate::solver::{Residual, Solution};
 use crate::stribeck::Stribeck;
 
@@ -27,7 +27,10 @@ pub enum Scheme {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<H> {
     stribeck: Stribeck,
-    n: f64,
+    /// n, classified once (integer and half-integer exponents are evaluated without `pow`).
+    n: Power,
+    /// n − 1, the exponent of dφ/du = n·|u|ⁿ⁻¹ in the implicit solver's Newton iteration.
+    n_less_one: Power,
     sigma1: f64,
     sigma2: f64,
     hysteresis: H,
@@ -71,7 +74,8 @@ impl<H: Hysteresis> Params<H> {
         }
         Ok(Self {
             stribeck,
-            n,
+            n: Power::new(n),
+            n_less_one: Power::new(n - 1.0),
             sigma1,
             sigma2,
             hysteresis,
@@ -84,7 +88,7 @@ impl<H: Hysteresis> Params<H> {
     }
     /// Transition-curve exponent n.
     pub fn n(&self) -> f64 {
-        self.n
+        self.n.exponent()
     }
     /// Micro-viscous coefficient σ1.
     pub fn sigma1(&self) -> f64 {
@@ -131,7 +135,7 @@ impl<H: Hysteresis> Params<H> {
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
         let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);
-        v - libm::fabs(v) * libm::copysign(abs_pow(u, self.n), u)
+        v - libm::fabs(v) * libm::copysign(self.n.abs(u), u)
     }
 
     /// One step with velocity input `v` held over `dt`; returns the friction force.
@@ -279,10 +283,19 @@ impl<H: Hysteresis> Params<H> {
             dt_abs_v: dt * libm::fabs(v),
             inverse_g: 1.0 / self.stribeck.g(v),
             n: self.n,
+            n_less_one: self.n_less_one,
         }
     }
 
     /// The step proper, for inputs already checked.
+    ///
+    /// A diverging step (non-finite z⁺ or force) must leave the state untouched. Committing
+    /// into a copy of the memory and storing it back costs two copies of the memory per step
+    /// (2 × 256 bytes at N = 32), so the force's finiteness is decided before committing
+    /// instead: |Fh(z⁺)| ≤ B (`force_bound`), hence |F| ≤ B + |σ1·(z⁺ − z)/dt| + |σ2·v|, and
+    /// when that sum is below half the f64 range, rounding in the sum of Fh cannot carry F to
+    /// infinity either, so the memory is committed in place. Only forces near the f64 range
+    /// (or a hysteresis without a bound) take the copying path.
     #[inline]
     fn advance(
         &self,
@@ -299,15 +312,37 @@ impl<H: Hysteresis> Params<H> {
         if !z_next.is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
-        let mut memory = state.memory;
-        let force = self.hysteresis.commit(&mut memory, z_next)
-            + self.sigma1 * (z_next - z) / dt
-            + self.sigma2 * v;
+        let micro_viscous = self.sigma1 * (z_next - z) / dt;
+        let viscous = self.sigma2 * v;
+        let bound =
+            self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
+        let force = if bound < 0.5 * f64::MAX {
+            self.hysteresis.commit(&mut state.memory, z_next) + micro_viscous + viscous
+        } else {
+            self.commit_copy(&mut state.memory, z_next, micro_viscous, viscous)?
+        };
+        state.z = z_next;
+        Ok(force)
+    }
+
+    /// The commit of a step whose force may not be finite: into a copy of the memory, stored
+    /// back only if the force is finite. Out of line, so that the in-place path keeps its own
+    /// inlined commit.
+    #[cold]
+    #[inline(never)]
+    fn commit_copy(
+        &self,
+        memory: &mut H::Memory,
+        z_next: f64,
+        micro_viscous: f64,
+        viscous: f64,
+    ) -> Result<f64, Error> {
+        let mut copy = *memory;
+        let force = self.hysteresis.commit(&mut copy, z_next) + micro_viscous + viscous;
         if !force.is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
-        state.memory = memory;
-        state.z = z_next;
+        *memory = copy;
         Ok(force)
     }
 

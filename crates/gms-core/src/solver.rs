@@ -15,9 +15,17 @@
 //! safeguarded Newton otherwise. If the root of the piece lies beyond the piece's end, the walk
 //! moves to that breakpoint. A bank of N elements has at most 2N breakpoints, so a step costs at
 //! most 2N + 1 evaluations of Fh; in practice one or two.
+//!
+//! An evaluation is one pass over the elements for Fh at the iterate and, unless the iterate is
+//! the root, one for the piece on the side where R says the root lies ([`Hysteresis::piece`]);
+//! the slope and breakpoint on the other side are never needed.
+//!
+//! The exponent n arrives classified ([`Power`], once per parameter set): integer and
+//! half-integer n are products and a square root, and only other n call `pow`. The Newton
+//! iteration takes P and its slope at a point from the single power |u|ⁿ⁻¹.
 
-use crate::hysteresis::{Hysteresis, Trial};
-use crate::math::abs_pow;
+use crate::hysteresis::{Hysteresis, Piece};
+use crate::math::Power;
 
 /// Upper bound on the scalar Newton/bisection iterations on one linear piece (used only when
 /// n ∉ {1, 2}). The bracket at least halves every two iterations, and 55 halvings shrink any
@@ -29,8 +37,9 @@ pub const MAX_ITERATIONS: u32 = 128;
 pub struct Solution {
     /// z at the end of the step.
     pub z: f64,
-    /// Evaluations of the hysteresis trial (each O(N)), the one at z included; at most 2N + 1
-    /// for N Maxwell-slip elements, 2 for a linear spring.
+    /// Evaluations of the hysteresis map (each O(N): Fh at the iterate and the piece toward the
+    /// root), the one at z included; at most 2N + 1 for N Maxwell-slip elements, 2 for a linear
+    /// spring.
     pub iterations: u32,
 }
 
@@ -47,13 +56,15 @@ pub(crate) struct Residual<'a, H: Hysteresis> {
     /// 1/g(v).
     pub inverse_g: f64,
     /// Transition exponent n.
-    pub n: f64,
+    pub n: Power,
+    /// n − 1, for the slope of φ in the Newton iteration.
+    pub n_less_one: Power,
 }
 
 /// φ(u) = sgn(u)·|u|ⁿ.
 #[inline]
-fn phi(u: f64, n: f64) -> f64 {
-    libm::copysign(abs_pow(u, n), u)
+fn phi(u: f64, n: Power) -> f64 {
+    libm::copysign(n.abs(u), u)
 }
 
 /// Where the root of R lies relative to one linear piece of Fh.
@@ -77,10 +88,14 @@ impl<H: Hysteresis> Residual<'_, H> {
     }
 
     /// The unique root of R, bracketed by z and the explicit Euler point.
+    ///
+    /// Each iterate evaluates Fh (`force`), and then, only if it is not the root, the one piece
+    /// of Fh on the side where the root lies (`piece`): the sign of R tells the side, so the
+    /// other side's slope and breakpoint are never computed.
     pub fn solve(&self) -> Solution {
         let mut y = self.z;
-        let mut trial = self.hysteresis.trial(self.memory, y);
-        let mut r = self.value(y, trial.force);
+        let mut force = self.hysteresis.force(self.memory, y);
+        let mut r = self.value(y, force);
         let mut iterations = 1;
         if r == 0.0 {
             return Solution { z: y, iterations };
@@ -92,7 +107,8 @@ impl<H: Hysteresis> Residual<'_, H> {
             (explicit, y)
         };
         loop {
-            match self.solve_piece(y, r, &trial, lo, hi) {
+            let piece = self.hysteresis.piece(self.memory, y, r < 0.0);
+            match self.solve_piece(y, r, force, piece, lo, hi) {
                 OnPiece::Root(root) => {
                     return Solution {
                         z: root,
@@ -107,8 +123,8 @@ impl<H: Hysteresis> Residual<'_, H> {
                 }
                 OnPiece::Beyond(end) => {
                     y = end;
-                    trial = self.hysteresis.trial(self.memory, y);
-                    r = self.value(y, trial.force);
+                    force = self.hysteresis.force(self.memory, y);
+                    r = self.value(y, force);
                     iterations += 1;
                     if r == 0.0 {
                         return Solution { z: y, iterations };
@@ -123,19 +139,20 @@ impl<H: Hysteresis> Residual<'_, H> {
         }
     }
 
-    /// On the piece of Fh next to y in the direction of the root (R(y) = r ≠ 0), within the
-    /// bracket [lo, hi]: the root, or the end of the piece if the root lies beyond it.
+    /// On the piece of Fh next to y in the direction of the root (R(y) = r ≠ 0, Fh(y) =
+    /// `force`), within the bracket [lo, hi]: the root, or the end of the piece if the root
+    /// lies beyond it.
     #[inline]
-    fn solve_piece(&self, y: f64, r: f64, trial: &Trial, lo: f64, hi: f64) -> OnPiece {
+    fn solve_piece(&self, y: f64, r: f64, force: f64, piece: Piece, lo: f64, hi: f64) -> OnPiece {
         // On the piece, Fh(y + s) = Fh(y) + K·s, so u(s) = α + β·s.
         let rightward = r < 0.0;
-        let (slope, end) = if rightward {
-            (trial.slope_right, trial.right.min(hi))
+        let end = if rightward {
+            piece.end.min(hi)
         } else {
-            (trial.slope_left, trial.left.max(lo))
+            piece.end.max(lo)
         };
-        let alpha = trial.force * self.inverse_g;
-        let beta = slope * self.inverse_g;
+        let alpha = force * self.inverse_g;
+        let beta = piece.slope * self.inverse_g;
         let c = self.dt_abs_v;
         let s_end = end - y;
         // R(y + s) = s + q + c·φ(α + β·s). Written with q, not r − c·φ(α): when c·φ(α) is huge
@@ -144,14 +161,14 @@ impl<H: Hysteresis> Residual<'_, H> {
         let s = if beta == 0.0 {
             // Every element saturated: φ is constant and R has slope 1.
             -r
-        } else if self.n == 1.0 {
-            -r / (1.0 + c * beta)
-        } else if self.n == 2.0 {
-            quadratic_root(r, q, alpha, beta, c)
         } else {
-            match self.newton_on_piece(r, q, alpha, beta, s_end) {
-                Some(s) => s,
-                None => return OnPiece::Beyond(end),
+            match self.n {
+                Power::One => -r / (1.0 + c * beta),
+                Power::Two => quadratic_root(r, q, alpha, beta, c),
+                _ => match self.newton_on_piece(r, q, alpha, beta, s_end) {
+                    Some(s) => s,
+                    None => return OnPiece::Beyond(end),
+                },
             }
         };
         // The extended piece is monotone, so a root past the end means the root is beyond it.
@@ -170,37 +187,49 @@ impl<H: Hysteresis> Residual<'_, H> {
     /// The bracket therefore halves at least every two steps, which bounds the iterations.
     fn newton_on_piece(&self, r: f64, q: f64, alpha: f64, beta: f64, s_end: f64) -> Option<f64> {
         let (n, c) = (self.n, self.dt_abs_v);
+        let n_value = n.exponent();
         let p = |s: f64| (s + q) + c * phi(alpha + beta * s, n);
+        // P and its slope at s from one power: |u|ⁿ⁻¹ gives both dφ/du = n·|u|ⁿ⁻¹ and
+        // |u|ⁿ = |u|ⁿ⁻¹·|u| (exactly φ's rounding for n = 1.5 and 3, within an ulp or two
+        // otherwise). dφ/du is infinite at u = 0 when n < 1: no Newton step there.
+        let value_and_slope = |s: f64| {
+            let u = alpha + beta * s;
+            if u == 0.0 {
+                let slope = if n_value > 1.0 { 1.0 } else { f64::INFINITY };
+                return ((s + q) + c * u, slope);
+            }
+            let magnitude = libm::fabs(u);
+            let power = self.n_less_one.of(magnitude);
+            let phi = libm::copysign(power * magnitude, u);
+            ((s + q) + c * phi, 1.0 + c * beta * n_value * power)
+        };
         let p_end = p(s_end);
         if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
             return None;
         }
-        // Bracket [a, b] in s with P(a) < 0 < P(b).
+        // Bracket [a, b] in s with P(a) ≤ 0 ≤ P(b) (an end is 0 only at s_end).
         let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
         let tolerance = 4.0 * f64::EPSILON * (libm::fabs(self.z) + libm::fabs(s_end));
-        let (mut s, mut value) = (0.0, r);
+        // P(0) = r is known; its slope is not.
+        let (mut s, mut value, mut slope) = (0.0, r, value_and_slope(0.0).1);
         let mut checkpoint = b - a;
         for iteration in 0..MAX_ITERATIONS {
             if b - a <= tolerance {
                 break;
             }
-            let u = alpha + beta * s;
-            // dφ/du = n·|u|ⁿ⁻¹, infinite at u = 0 when n < 1: no Newton step there.
-            let slope = if u == 0.0 {
-                if n > 1.0 {
-                    1.0
-                } else {
-                    f64::INFINITY
-                }
-            } else {
-                1.0 + c * beta * n * abs_pow(u, n) / libm::fabs(u)
-            };
             let newton = s - value / slope;
             if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
                 // A tiny step is not proof of a root where the slope is huge: accept it only
-                // if P changes sign within the tolerance around it.
+                // if P changes sign within the tolerance around it. P is increasing and
+                // P(a) ≤ 0 ≤ P(b), so a point at or beyond a bracket end needs no evaluation:
+                // usually the last iterate is one end, within the tolerance of the new one.
                 let (below, above) = (newton - tolerance, newton + tolerance);
-                let (p_below, p_above) = (p(below), p(above));
+                let p_below = if below <= a {
+                    f64::NEG_INFINITY
+                } else {
+                    p(below)
+                };
+                let p_above = if above >= b { f64::INFINITY } else { p(above) };
                 if p_below <= 0.0 && p_above >= 0.0 {
                     return Some(clamp(newton, a, b));
                 }
@@ -219,7 +248,7 @@ impl<H: Hysteresis> Residual<'_, H> {
             } else {
                 0.5 * (a + b)
             };
-            value = p(s);
+            (value, slope) = value_and_slope(s);
             if value == 0.0 {
                 return Some(s);
             }

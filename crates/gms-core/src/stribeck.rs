@@ -2,7 +2,7 @@
 
 use crate::checks::positive;
 use crate::error::{Error, Field};
-use crate::math::abs_pow;
+use crate::math::Power;
 
 /// g(v) = Fc + (Fs − Fc)·exp(−|v/Vs|^δ), with separate levels for v < 0 when asymmetric.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,7 +12,8 @@ pub struct Stribeck {
     fc_neg: f64,
     fs_neg: f64,
     vs: f64,
-    delta: f64,
+    /// δ, classified once: g is evaluated on every step, usually at an integer δ.
+    delta: Power,
     /// Above these values of |v/Vs|^δ the Stribeck term is below half an ulp of Fc (resp.
     /// `Fc_neg`): adding it cannot change g, so the exponential is skipped.
     negligible: f64,
@@ -61,7 +62,7 @@ impl Stribeck {
             fc_neg,
             fs_neg,
             vs,
-            delta,
+            delta: Power::new(delta),
             negligible: negligible_above(fc, fs),
             negligible_neg: negligible_above(fc_neg, fs_neg),
         })
@@ -89,7 +90,7 @@ impl Stribeck {
     }
     /// Stribeck shape exponent δ.
     pub fn delta(&self) -> f64 {
-        self.delta
+        self.delta.exponent()
     }
 
     /// The largest level the curve reaches, max(Fs, `Fs_neg`).
@@ -105,7 +106,7 @@ impl Stribeck {
         } else {
             (self.fc, self.fs, self.negligible)
         };
-        let exponent = abs_pow(v / self.vs, self.delta);
+        let exponent = self.delta.abs(v / self.vs);
         if exponent > negligible {
             return fc;
         }

@@ -8,7 +8,9 @@
 //! - The hysteresis map around reachable memories: `trial` is non-decreasing in z and linear
 //!   up to the breakpoints it reports (the implicit solver walks those pieces), `force` and
 //!   `commit` return the trial force, and committing at z does not change Fh(z) (no force jump
-//!   when elements slip).
+//!   when elements slip). `piece` is `trial`'s side, bit for bit, and `trial` agrees with a plain
+//!   element-by-element evaluation written here (breakpoints exactly, sums to rounding), also
+//!   at z exactly on the breakpoints, where the sticking tests `≤` and `<` differ.
 //!
 //! All comparisons are exact except where a rounding of one operation is unavoidable; each such
 //! tolerance is a few ulps and says which rounding it covers.
@@ -16,7 +18,7 @@
 mod common;
 
 use common::{dt, leuven, reach, scheme, velocities};
-use gms_core::{Error, Hysteresis, LeuvenParams, Scheme};
+use gms_core::{Error, Hysteresis, LeuvenParams, MaxwellSlip, Piece, Scheme, Trial};
 use proptest::prelude::*;
 
 /// Steps `velocities` through a relaxed channel and checks every element after every step.
@@ -70,6 +72,39 @@ fn deflections_stay_within_breaks<const N: usize>(
     Ok(())
 }
 
+/// `trial` as the paper's elements define it, one element at a time in plain loops: element i
+/// sticks on [ζᵢ − Δᵢ, ζᵢ + Δᵢ], and contributes its stiffness to the slope on a side when it
+/// sticks on that side of z.
+fn plain_trial<const N: usize>(bank: &MaxwellSlip<N>, memory: &[f64; N], z: f64) -> Trial {
+    let mut trial = Trial {
+        force: 0.0,
+        slope_left: 0.0,
+        slope_right: 0.0,
+        left: f64::NEG_INFINITY,
+        right: f64::INFINITY,
+    };
+    for ((&w, &limit), &zeta) in bank.w().iter().zip(bank.delta()).zip(memory) {
+        let k = w / limit;
+        let (lower, upper) = (zeta - limit, zeta + limit);
+        trial.force += k * (z - zeta).max(-limit).min(limit);
+        if lower <= z && z < upper {
+            trial.slope_right += k;
+        }
+        if lower < z && z <= upper {
+            trial.slope_left += k;
+        }
+        for breakpoint in [lower, upper] {
+            if breakpoint > z {
+                trial.right = trial.right.min(breakpoint);
+            }
+            if breakpoint < z {
+                trial.left = trial.left.max(breakpoint);
+            }
+        }
+    }
+    trial
+}
+
 /// `trial` over a grid of z around a reachable memory: monotone, agreeing with `force` and with
 /// what `commit` returns, unchanged by a commit, and linear on the pieces it reports.
 fn hysteresis_map_is_consistent<const N: usize>(
@@ -96,6 +131,13 @@ fn hysteresis_map_is_consistent<const N: usize>(
     let mut grid: Vec<f64> = offsets
         .iter()
         .map(|offset| state.z + offset * scale)
+        .chain(
+            state
+                .memory
+                .iter()
+                .zip(bank.delta())
+                .flat_map(|(&zeta, &limit)| [zeta - limit, zeta + limit]),
+        )
         .collect();
     grid.sort_by(f64::total_cmp);
     for pair in grid.windows(2) {
@@ -116,6 +158,29 @@ fn hysteresis_map_is_consistent<const N: usize>(
         let trial = bank.trial(&state.memory, z);
         prop_assert!(trial.force.abs() <= total * (1.0 + 4.0 * f64::EPSILON));
         prop_assert_eq!(bank.force(&state.memory, z), trial.force);
+        let right = Piece {
+            slope: trial.slope_right,
+            end: trial.right,
+        };
+        let left = Piece {
+            slope: trial.slope_left,
+            end: trial.left,
+        };
+        prop_assert_eq!(bank.piece(&state.memory, z, true), right);
+        prop_assert_eq!(bank.piece(&state.memory, z, false), left);
+
+        // The same map, element by element: breakpoints exact, sums to their rounding.
+        let plain = plain_trial(bank, &state.memory, z);
+        prop_assert_eq!((plain.left, plain.right), (trial.left, trial.right));
+        let stiffness: f64 = bank
+            .w()
+            .iter()
+            .zip(bank.delta())
+            .map(|(&w, &limit)| w / limit)
+            .sum();
+        prop_assert!((plain.force - trial.force).abs() <= rounding(z));
+        prop_assert!((plain.slope_left - trial.slope_left).abs() <= 1e-14 * stiffness);
+        prop_assert!((plain.slope_right - trial.slope_right).abs() <= 1e-14 * stiffness);
 
         // On each side, up to the reported breakpoint, Fh is the reported straight line.
         prop_assert!(trial.left < z && z < trial.right);
@@ -188,6 +253,27 @@ proptest! {
     #[test]
     fn hysteresis_map_consistent_n4(
         params in leuven::<4>(),
+        v in velocities(),
+        dt in dt(),
+        offsets in prop::collection::vec(-3.0..3.0f64, 2..40),
+    ) {
+        hysteresis_map_is_consistent(&params, &v, dt, &offsets)?;
+    }
+
+    #[test]
+    fn hysteresis_map_consistent_n1(
+        params in leuven::<1>(),
+        v in velocities(),
+        dt in dt(),
+        offsets in prop::collection::vec(-3.0..3.0f64, 2..40),
+    ) {
+        hysteresis_map_is_consistent(&params, &v, dt, &offsets)?;
+    }
+
+    /// N = 10: two full chunks of four elements and a remainder of two.
+    #[test]
+    fn hysteresis_map_consistent_n10(
+        params in leuven::<10>(),
         v in velocities(),
         dt in dt(),
         offsets in prop::collection::vec(-3.0..3.0f64, 2..40),

@@ -344,3 +344,40 @@ fn overflowing_position_difference_is_reported() {
     );
     assert_eq!(bits(&fresh), bits(&params.relaxed_state()));
 }
+
+/// A step whose z⁺ is finite but whose force overflows (σ1·(z⁺ − z)/dt beyond the f64 range)
+/// is `Diverged` and leaves every element where it was, although the commit at z⁺ would have
+/// moved them: the step decides finiteness before it writes the memory.
+#[test]
+fn overflowing_force_leaves_the_elements_in_place() {
+    // Fc close to ΣW: at the step's z⁺ (Fh ≈ g = Fc), the narrow elements slip.
+    let stribeck = gms_core::Stribeck::new(3.0, 3.5, 1e-3, 2.0).expect("valid curve");
+    let elements = gms_core::MaxwellSlip::new([1.0, 1.0, 1.0, 1.0], [1e-6, 2e-6, 3e-6, 4e-6])
+        .expect("valid elements");
+    let stiff: LeuvenParams<4> =
+        Params::new(stribeck, 2.0, 1e300, 0.4, elements).expect("valid parameters");
+    let plain: LeuvenParams<4> =
+        Params::new(stribeck, 2.0, 0.0, 0.4, elements).expect("valid parameters");
+    // dt·v = 10 µm in 1e-20 s: σ1·(z⁺ − z)/dt ≈ 1e300·1e-6/1e-20 overflows.
+    let (v, dt) = (1e15, 1e-20);
+    for scheme in [Scheme::Implicit, Scheme::Explicit] {
+        // From a state with the elements deflected, not relaxed, so that every ζ counts.
+        let mut state = plain.relaxed_state();
+        plain
+            .step(&mut state, -1e-3, 1e-3, scheme)
+            .expect("a finite step");
+        let before = bits(&state);
+        assert_eq!(
+            stiff.step(&mut state, v, dt, scheme),
+            Err(Error::Diverged { index: 0 }),
+            "{scheme:?}"
+        );
+        assert_eq!(bits(&state), before, "{scheme:?}");
+        // The same step with a finite force commits, and moves elements.
+        let mut moved = state;
+        plain
+            .step(&mut moved, v, dt, scheme)
+            .expect("a finite step");
+        assert_ne!(moved.memory, state.memory, "{scheme:?}");
+    }
+}

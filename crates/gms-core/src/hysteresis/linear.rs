@@ -53,4 +53,10 @@ impl Hysteresis for Linear {
     fn max_force(&self) -> f64 {
         f64::INFINITY
     }
+
+    /// |σ0·z|: the very product `commit` returns.
+    #[inline]
+    fn force_bound(&self, z: f64) -> f64 {
+        libm::fabs(self.sigma0 * z)
+    }
 }

@@ -1,6 +1,6 @@
 //! N elasto-slide elements in parallel (the paper's eq. 5): fixed memory, nonlocal memory.
 
-use super::{Hysteresis, Trial};
+use super::{Hysteresis, Piece, Trial};
 use crate::error::{Error, Field};
 
 /// The narrowest break deflection allowed, relative to the widest: 2⁻²⁶ = √ε ≈ 1.49e-8.
@@ -34,8 +34,8 @@ fn sum(lanes: [f64; LANES]) -> f64 {
     (lanes[0] + lanes[1]) + (lanes[2] + lanes[3])
 }
 
-/// `value` limited to [−limit, limit], for finite values and limit > 0 (no NaN handling, no
-/// panic path, unlike `f64::clamp`).
+/// `value` limited to [−limit, limit], for limit > 0, as two selects that compile to one
+/// `maxsd` and one `minsd`. Unlike `f64::clamp` it has no panic path; a NaN passes through.
 #[inline]
 fn clamp(value: f64, limit: f64) -> f64 {
     let low = if value < -limit { -limit } else { value };
@@ -44,6 +44,50 @@ fn clamp(value: f64, limit: f64) -> f64 {
     } else {
         low
     }
+}
+
+/// `a` if `condition`, else `b`, as data rather than control flow: a compare mask and a blend,
+/// never a branch to mispredict.
+#[inline]
+fn select(condition: bool, a: f64, b: f64) -> f64 {
+    if condition {
+        a
+    } else {
+        b
+    }
+}
+
+/// Runs `body(i, lane)` over the N elements, element i in partial sum `lane` = i mod LANES,
+/// in chunks of LANES whose lane indices are constants: the partial sums stay in registers, and
+/// no bound is checked per element (the chunks and their remainder have known lengths).
+#[inline]
+fn for_each_element<const N: usize>(mut body: impl FnMut(usize, usize)) {
+    let chunks = N / LANES;
+    for chunk in 0..chunks {
+        for lane in 0..LANES {
+            body(chunk * LANES + lane, lane);
+        }
+    }
+    for lane in 0..N % LANES {
+        body(chunks * LANES + lane, lane);
+    }
+}
+
+/// `nearest` lowered to the nearest breakpoint of one element above z, if that is nearer:
+/// ζ − Δ if it is above z, else ζ + Δ if that is; a minimum, with +∞ for "none".
+#[inline]
+fn nearer_above(nearest: f64, lower: f64, upper: f64, z: f64) -> f64 {
+    let above = select(lower > z, lower, upper);
+    let above = select(above > z, above, f64::INFINITY);
+    select(above < nearest, above, nearest)
+}
+
+/// `nearest` raised to the nearest breakpoint of one element below z, if that is nearer.
+#[inline]
+fn nearer_below(nearest: f64, lower: f64, upper: f64, z: f64) -> f64 {
+    let below = select(upper < z, upper, lower);
+    let below = select(below < z, below, f64::NEG_INFINITY);
+    select(below > nearest, below, nearest)
 }
 
 /// Maxwell-slip bank of `N` elements with saturation forces `W` and break deflections `Delta`.
@@ -55,6 +99,8 @@ pub struct MaxwellSlip<const N: usize> {
     w: [f64; N],
     delta: [f64; N],
     stiffness: [f64; N],
+    /// ΣW, the largest |Fh|, summed once here rather than on every step's finiteness check.
+    total: f64,
 }
 
 impl<const N: usize> MaxwellSlip<N> {
@@ -79,7 +125,8 @@ impl<const N: usize> MaxwellSlip<N> {
                 });
             }
         }
-        if !w.iter().sum::<f64>().is_finite() {
+        let total: f64 = w.iter().sum();
+        if !total.is_finite() {
             let (index, largest) = largest(&w);
             return Err(Error::ForceSumOverflow { index, largest });
         }
@@ -120,6 +167,7 @@ impl<const N: usize> MaxwellSlip<N> {
             w,
             delta,
             stiffness,
+            total,
         })
     }
 
@@ -144,19 +192,20 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
     // The element loops are written with selects rather than branches (whether an element
     // sticks changes from sample to sample, and mispredicted branches cost more than the
     // arithmetic), and accumulate into LANES partial sums held in registers: one running sum
-    // would chain every addition to the latency of the previous one.
+    // would chain every addition to the latency of the previous one. Every expression is the
+    // one the branchy form had (the same comparisons on ζ ± Δ, the same order of sums), so the
+    // results are the same to the bit.
 
     #[inline]
     fn force(&self, zeta: &[f64; N], z: f64) -> f64 {
         let mut force = [0.0; LANES];
-        for start in (0..N).step_by(LANES) {
-            for (lane, force) in force.iter_mut().enumerate() {
-                let i = start + lane;
-                if i < N {
-                    *force += self.stiffness[i] * clamp(z - zeta[i], self.delta[i]);
-                }
+        for_each_element::<N>(|i, lane| {
+            if let (Some(&k), Some(&limit), Some(&position)) =
+                (self.stiffness.get(i), self.delta.get(i), zeta.get(i))
+            {
+                force[lane] += k * clamp(z - position, limit);
             }
-        }
+        });
         sum(force)
     }
 
@@ -167,64 +216,102 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
         let mut slope_right = [0.0; LANES];
         let mut left = [f64::NEG_INFINITY; LANES];
         let mut right = [f64::INFINITY; LANES];
-        for start in (0..N).step_by(LANES) {
-            for lane in 0..LANES {
-                let i = start + lane;
-                if i >= N {
-                    break;
-                }
-                let (k, limit) = (self.stiffness[i], self.delta[i]);
-                // The element sticks while z ∈ [ζ − Δ, ζ + Δ]; those two points are breakpoints.
-                let lower = zeta[i] - limit;
-                let upper = zeta[i] + limit;
-                force[lane] += k * clamp(z - zeta[i], limit);
-                slope_right[lane] += if lower <= z && z < upper { k } else { 0.0 };
-                slope_left[lane] += if lower < z && z <= upper { k } else { 0.0 };
-                let above = if lower > z { lower } else { upper };
-                let below = if upper < z { upper } else { lower };
-                if above > z && above < right[lane] {
-                    right[lane] = above;
-                }
-                if below < z && below > left[lane] {
-                    left[lane] = below;
-                }
-            }
-        }
+        for_each_element::<N>(|i, lane| {
+            let (Some(&k), Some(&limit), Some(&position)) =
+                (self.stiffness.get(i), self.delta.get(i), zeta.get(i))
+            else {
+                return;
+            };
+            // The element sticks while z ∈ [ζ − Δ, ζ + Δ]; those two points are breakpoints.
+            let lower = position - limit;
+            let upper = position + limit;
+            force[lane] += k * clamp(z - position, limit);
+            slope_right[lane] += select(lower <= z && z < upper, k, 0.0);
+            slope_left[lane] += select(lower < z && z <= upper, k, 0.0);
+            right[lane] = nearer_above(right[lane], lower, upper, z);
+            left[lane] = nearer_below(left[lane], lower, upper, z);
+        });
         Trial {
             force: sum(force),
             slope_left: sum(slope_left),
             slope_right: sum(slope_right),
             left: left
                 .iter()
-                .fold(f64::NEG_INFINITY, |a, &b| if b > a { b } else { a }),
+                .fold(f64::NEG_INFINITY, |a, &b| select(b > a, b, a)),
             right: right
                 .iter()
-                .fold(f64::INFINITY, |a, &b| if b < a { b } else { a }),
+                .fold(f64::INFINITY, |a, &b| select(b < a, b, a)),
+        }
+    }
+
+    #[inline]
+    fn piece(&self, zeta: &[f64; N], z: f64, rightward: bool) -> Piece {
+        // One pass for one side: half the comparisons of `trial`, and no force (the solver has
+        // it already). The direction is tested once, outside the element loop.
+        let mut slope = [0.0; LANES];
+        if rightward {
+            let mut end = [f64::INFINITY; LANES];
+            for_each_element::<N>(|i, lane| {
+                if let (Some(&k), Some(&limit), Some(&position)) =
+                    (self.stiffness.get(i), self.delta.get(i), zeta.get(i))
+                {
+                    let (lower, upper) = (position - limit, position + limit);
+                    slope[lane] += select(lower <= z && z < upper, k, 0.0);
+                    end[lane] = nearer_above(end[lane], lower, upper, z);
+                }
+            });
+            Piece {
+                slope: sum(slope),
+                end: end.iter().fold(f64::INFINITY, |a, &b| select(b < a, b, a)),
+            }
+        } else {
+            let mut end = [f64::NEG_INFINITY; LANES];
+            for_each_element::<N>(|i, lane| {
+                if let (Some(&k), Some(&limit), Some(&position)) =
+                    (self.stiffness.get(i), self.delta.get(i), zeta.get(i))
+                {
+                    let (lower, upper) = (position - limit, position + limit);
+                    slope[lane] += select(lower < z && z <= upper, k, 0.0);
+                    end[lane] = nearer_below(end[lane], lower, upper, z);
+                }
+            });
+            Piece {
+                slope: sum(slope),
+                end: end
+                    .iter()
+                    .fold(f64::NEG_INFINITY, |a, &b| select(b > a, b, a)),
+            }
         }
     }
 
     #[inline]
     fn commit(&self, zeta: &mut [f64; N], z: f64) -> f64 {
         let mut force = [0.0; LANES];
-        for start in (0..N).step_by(LANES) {
-            for (lane, force) in force.iter_mut().enumerate() {
-                let i = start + lane;
-                if i < N {
-                    let deflection = z - zeta[i];
-                    let kept = clamp(deflection, self.delta[i]);
-                    // Only slipping elements move: rewriting a sticking ζ as z − (z − ζ) rounds.
-                    if kept != deflection {
-                        zeta[i] = z - kept;
-                    }
-                    *force += self.stiffness[i] * kept;
-                }
+        for_each_element::<N>(|i, lane| {
+            if let (Some(&k), Some(&limit), Some(position)) =
+                (self.stiffness.get(i), self.delta.get(i), zeta.get_mut(i))
+            {
+                let deflection = z - *position;
+                let kept = clamp(deflection, limit);
+                // Only slipping elements move: rewriting a sticking ζ as z − (z − ζ) rounds.
+                // The store is unconditional (of the old value when sticking), so there is no
+                // branch on whether the element slipped.
+                *position = select(kept != deflection, z - kept, *position);
+                force[lane] += k * kept;
             }
-        }
+        });
         sum(force)
     }
 
     fn max_force(&self) -> f64 {
-        self.w.iter().sum()
+        self.total
+    }
+
+    /// ΣW, whatever z: each element's force kᵢ·eᵢ has |eᵢ| ≤ Δᵢ, so |Fh| ≤ Σ kᵢ·Δᵢ = ΣW up to
+    /// rounding of relative order N·ε, which the step's margin (half the f64 range) covers.
+    #[inline]
+    fn force_bound(&self, _z: f64) -> f64 {
+        self.total
     }
 
     fn check_memory(&self, zeta: &[f64; N], z: f64) -> Result<(), Error> {

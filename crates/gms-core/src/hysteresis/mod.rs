@@ -28,6 +28,16 @@ pub struct Trial {
     pub right: f64,
 }
 
+/// The linear piece of Fh on one side of a deflection: what the implicit solver needs once it
+/// knows in which direction the root lies (see [`Hysteresis::piece`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// dFh/dz on the piece.
+    pub slope: f64,
+    /// The piece's far end: the nearest breakpoint on that side (±∞ if none).
+    pub end: f64,
+}
+
 /// A hysteresis force with a fixed-size memory per channel.
 ///
 /// `trial(..).force` must be continuous and non-decreasing in `z` (every element is a spring or saturated), which is what
@@ -45,12 +55,44 @@ pub trait Hysteresis {
     /// Fh and its pieces at `z`, as if the memory were moved to `z` (nothing is written).
     fn trial(&self, memory: &Self::Memory, z: f64) -> Trial;
 
+    /// The piece of the trial map on one side of `z` (to the right if `rightward`): the
+    /// `slope_right` and `right` of [`Hysteresis::trial`], or `slope_left` and `left`, equal to
+    /// them bit for bit. The default calls `trial`; an implementation may compute one side
+    /// only, which is what the implicit solver needs after it has evaluated `force`.
+    #[inline]
+    fn piece(&self, memory: &Self::Memory, z: f64, rightward: bool) -> Piece {
+        let trial = self.trial(memory, z);
+        if rightward {
+            Piece {
+                slope: trial.slope_right,
+                end: trial.right,
+            }
+        } else {
+            Piece {
+                slope: trial.slope_left,
+                end: trial.left,
+            }
+        }
+    }
+
     /// Moves the memory to `z` (the elements that would be over-stretched slip) and returns
     /// Fh(z), which equals the trial force at `z`.
     fn commit(&self, memory: &mut Self::Memory, z: f64) -> f64;
 
     /// sup |Fh| over all z (infinite for a linear spring).
     fn max_force(&self) -> f64;
+
+    /// A bound on |Fh(z)| for every memory a channel can hold at deflection `z`, as `commit`
+    /// computes it (rounding included, for bounds below half the f64 range).
+    ///
+    /// The step uses it to know, before committing, that the committed force will be finite,
+    /// so that it can commit in place and still leave the state untouched on a divergence.
+    /// The default, +∞, means "no bound known": the step then commits into a copy of the
+    /// memory and checks afterwards.
+    fn force_bound(&self, z: f64) -> f64 {
+        let _ = z;
+        f64::INFINITY
+    }
 
     /// Checks a memory written from outside (not produced by stepping) against deflection `z`:
     /// every element within its window, to a rounding tolerance. The default accepts any

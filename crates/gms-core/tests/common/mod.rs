@@ -39,9 +39,15 @@ pub fn dt() -> impl Strategy<Value = f64> + Clone {
     log_uniform(1e-5, 1e-2)
 }
 
-/// Exponents n (or δ): the special-cased 1 and 2 often, otherwise anything in (0.3, 4).
+/// Exponents n (or δ): the closed-form 1 and 2 often, the integers and half-integers that are
+/// evaluated without `pow` (0.5, 1.5, 2.5, 3, 3.5, 4) as often, otherwise anything in (0.3, 4).
 pub fn exponent() -> impl Strategy<Value = f64> + Clone {
-    prop_oneof![Just(1.0), Just(2.0), 0.3..4.0]
+    prop_oneof![
+        Just(1.0),
+        Just(2.0),
+        prop::sample::select(&[0.5, 1.5, 2.5, 3.0, 3.5, 4.0][..]),
+        0.3..4.0
+    ]
 }
 
 /// Viscous-type coefficients: exactly zero (Dahl-like) or spread over six decades.
