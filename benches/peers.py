@@ -1,0 +1,296 @@
+"""leuven-rt against the loop a Python user would write with numba, on one core, in one run:
+``python benches/peers.py [--quick]`` (needs the ``bench`` extra: numba).
+
+Each peer is an ``@njit`` loop over channels and samples of the same discrete step as the
+library (docs/model.md#discrete-step), with the same parameters and inputs:
+
+- LuGre (linear hysteresis σ0, n = 1), explicit and implicit (the implicit root is closed form);
+- the modified Leuven model with N = 10 Maxwell-slip elements and n = 2, explicit and implicit
+  (the implicit step walks the linear pieces of Fh and solves each in closed form, the method of
+  docs/model.md#discrete-step).
+
+Both sides get a batch of B channels × T samples (B = 256, T = 10 000; ``--quick``: 32 × 2 000)
+with a different sine per channel (amplitude, frequency and phase), so that channels reverse at
+different samples. The library runs with one thread (``RAYON_NUM_THREADS=1``, set before it is
+imported), the numba loop is serial. Before timing, the peer's forces are compared with the
+library's: a ratio between two different computations would mean nothing.
+
+Prints a markdown table: ns per channel-step for each, and the ratio numba / leuven-rt (above 1:
+the library is faster).
+"""
+
+from __future__ import annotations
+
+import os
+
+# One core for the library: rayon reads this when its pool starts, at the first batch call.
+os.environ["RAYON_NUM_THREADS"] = "1"
+
+import argparse
+import math
+import platform
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+import leuven_rt
+
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - depends on the environment
+    sys.exit("benches/peers.py needs numba: pip install 'leuven-rt[bench]' (or pip install numba)")
+
+DT = 1e-3
+FC, FS, VS, DELTA = 1.0, 1.5, 1e-3, 2.0
+SIGMA0, SIGMA1_LUGRE = 1e5, 316.0
+SIGMA1, SIGMA2 = 30.0, 0.4
+W = np.full(10, 0.2)
+DELTA_I = 1e-6 * np.arange(1, 11, dtype=np.float64)
+# Agreement demanded of the peer: the implicit roots are found by different arithmetic orders.
+AGREEMENT = 1e-9
+
+LUGRE = leuven_rt.Params(
+    Fc=FC, Fs=FS, Vs=VS, delta=DELTA, n=1.0, sigma0=SIGMA0, sigma1=SIGMA1_LUGRE, sigma2=SIGMA2
+)
+LEUVEN = leuven_rt.Params(
+    Fc=FC, Fs=FS, Vs=VS, delta=DELTA, n=2.0, sigma1=SIGMA1, sigma2=SIGMA2, W=list(W), Delta=list(DELTA_I)
+)
+
+
+@njit(cache=False, fastmath=False)
+def _stribeck(v: float) -> float:
+    x = v / VS
+    return FC + (FS - FC) * math.exp(-(x * x))
+
+
+@njit(cache=False)
+def lugre_explicit(v: np.ndarray, out: np.ndarray) -> None:
+    channels, samples = v.shape
+    for b in range(channels):
+        z = 0.0
+        for t in range(samples):
+            vk = v[b, t]
+            z_next = z + DT * (vk - abs(vk) * SIGMA0 * z / _stribeck(vk))
+            out[b, t] = SIGMA0 * z_next + SIGMA1_LUGRE * (z_next - z) / DT + SIGMA2 * vk
+            z = z_next
+
+
+@njit(cache=False)
+def lugre_implicit(v: np.ndarray, out: np.ndarray) -> None:
+    channels, samples = v.shape
+    for b in range(channels):
+        z = 0.0
+        for t in range(samples):
+            vk = v[b, t]
+            # Backward Euler with n = 1 is linear in z⁺.
+            z_next = (z + DT * vk) / (1.0 + DT * abs(vk) * SIGMA0 / _stribeck(vk))
+            out[b, t] = SIGMA0 * z_next + SIGMA1_LUGRE * (z_next - z) / DT + SIGMA2 * vk
+            z = z_next
+
+
+@njit(cache=False)
+def _commit(zeta: np.ndarray, stiffness: np.ndarray, delta: np.ndarray, z: float) -> float:
+    force = 0.0
+    for i in range(zeta.shape[0]):
+        deflection = z - zeta[i]
+        if deflection > delta[i]:
+            deflection = delta[i]
+            zeta[i] = z - deflection
+        elif deflection < -delta[i]:
+            deflection = -delta[i]
+            zeta[i] = z - deflection
+        force += stiffness[i] * deflection
+    return force
+
+
+@njit(cache=False)
+def leuven_explicit(v: np.ndarray, out: np.ndarray) -> None:
+    channels, samples = v.shape
+    stiffness = W / DELTA_I
+    zeta = np.zeros(W.shape[0])
+    for b in range(channels):
+        z = 0.0
+        zeta[:] = 0.0
+        for t in range(samples):
+            vk = v[b, t]
+            force = 0.0
+            for i in range(zeta.shape[0]):
+                force += stiffness[i] * min(max(z - zeta[i], -DELTA_I[i]), DELTA_I[i])
+            u = force / _stribeck(vk)
+            z_next = z + DT * (vk - abs(vk) * u * abs(u))
+            force = _commit(zeta, stiffness, DELTA_I, z_next)
+            out[b, t] = force + SIGMA1 * (z_next - z) / DT + SIGMA2 * vk
+            z = z_next
+
+
+@njit(cache=False)
+def _trial(
+    zeta: np.ndarray, stiffness: np.ndarray, delta: np.ndarray, y: float
+) -> tuple[float, float, float, float, float]:
+    """Fh(y), its slopes left and right of y, and the nearest breakpoints below and above."""
+    force, slope_left, slope_right = 0.0, 0.0, 0.0
+    left, right = -math.inf, math.inf
+    for i in range(zeta.shape[0]):
+        lower, upper = zeta[i] - delta[i], zeta[i] + delta[i]
+        force += stiffness[i] * min(max(y - zeta[i], -delta[i]), delta[i])
+        if lower <= y < upper:
+            slope_right += stiffness[i]
+        if lower < y <= upper:
+            slope_left += stiffness[i]
+        if lower > y:
+            right = min(right, lower)
+        elif upper > y:
+            right = min(right, upper)
+        if upper < y:
+            left = max(left, upper)
+        elif lower < y:
+            left = max(left, lower)
+    return force, slope_left, slope_right, left, right
+
+
+@njit(cache=False)
+def _quadratic_step(r: float, q: float, alpha: float, beta: float, c: float) -> float:
+    """The s with s + q + c·φ(α + β·s) = 0 for φ(u) = u·|u| (r is its value at s = 0)."""
+    s_zero = -alpha / beta
+    p_zero = s_zero + q
+    sigma = 1.0 if p_zero <= 0.0 else -1.0
+    if sigma * alpha >= 0.0:
+        a2 = sigma * c * beta * beta
+        a1 = 1.0 + 2.0 * c * abs(alpha) * beta
+        return -2.0 * r / (a1 + math.sqrt(max(a1 * a1 - 4.0 * a2 * r, 0.0)))
+    a2 = sigma * c * beta
+    a0 = beta * p_zero
+    w = -2.0 * a0 / (1.0 + math.sqrt(max(1.0 - 4.0 * a2 * a0, 0.0)))
+    return (w - alpha) / beta
+
+
+@njit(cache=False)
+def leuven_implicit(v: np.ndarray, out: np.ndarray) -> None:
+    channels, samples = v.shape
+    stiffness = W / DELTA_I
+    zeta = np.zeros(W.shape[0])
+    for b in range(channels):
+        z = 0.0
+        zeta[:] = 0.0
+        for t in range(samples):
+            vk = v[b, t]
+            inverse_g = 1.0 / _stribeck(vk)
+            c = DT * abs(vk)
+            y = z
+            force, slope_left, slope_right, left, right = _trial(zeta, stiffness, DELTA_I, y)
+            u = force * inverse_g
+            r = -DT * vk + c * u * abs(u)
+            if r != 0.0:
+                lo, hi = (y, y - r) if r < 0.0 else (y - r, y)
+                # Walk from z towards the root one linear piece of Fh at a time.
+                while True:
+                    rightward = r < 0.0
+                    if rightward:
+                        slope, end = slope_right, min(right, hi)
+                    else:
+                        slope, end = slope_left, max(left, lo)
+                    beta = slope * inverse_g
+                    q = (y - z) - DT * vk
+                    s = -r if beta == 0.0 else _quadratic_step(r, q, force * inverse_g, beta, c)
+                    s_end = end - y
+                    if (rightward and s < s_end) or (not rightward and s > s_end):
+                        y = min(max(y + s, lo), hi)
+                        break
+                    y = end
+                    if end == lo or end == hi:
+                        break
+                    force, slope_left, slope_right, left, right = _trial(zeta, stiffness, DELTA_I, y)
+                    u = force * inverse_g
+                    r = (y - z) - DT * vk + c * u * abs(u)
+                    if r == 0.0:
+                        break
+                    if r < 0.0:
+                        lo = y
+                    else:
+                        hi = y
+            force = _commit(zeta, stiffness, DELTA_I, y)
+            out[b, t] = force + SIGMA1 * (y - z) / DT + SIGMA2 * vk
+            z = y
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    params: leuven_rt.Params
+    scheme: str
+    peer: Callable[[np.ndarray, np.ndarray], None]
+
+
+CASES = (
+    Case("LuGre, explicit", LUGRE, "explicit", lugre_explicit),
+    Case("LuGre, implicit", LUGRE, "implicit", lugre_implicit),
+    Case("Leuven N = 10, n = 2, explicit", LEUVEN, "explicit", leuven_explicit),
+    Case("Leuven N = 10, n = 2, implicit", LEUVEN, "implicit", leuven_implicit),
+)
+
+
+def inputs(channels: int, samples: int) -> np.ndarray:
+    """A different 1 kHz sine per channel: 5–15 mm/s, 2–8 Hz, any phase (seeded)."""
+    rng = np.random.default_rng(13)
+    amplitude = rng.uniform(5e-3, 15e-3, (channels, 1))
+    frequency = rng.uniform(2.0, 8.0, (channels, 1))
+    phase = rng.uniform(0.0, 2.0 * np.pi, (channels, 1))
+    t = np.arange(samples) * DT
+    return np.ascontiguousarray(amplitude * np.sin(2.0 * np.pi * frequency * t + phase))
+
+
+def seconds(run: Callable[[], object]) -> float:
+    start = time.perf_counter()
+    run()
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a small batch and 3 repeats (a smoke run)")
+    args = parser.parse_args()
+    channels, samples, repeats = (32, 2_000, 3) if args.quick else (256, 10_000, 7)
+    v = inputs(channels, samples)
+    steps = channels * samples
+    import numba
+
+    load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
+    print("# leuven-rt against numba, one core" + (" (--quick)" if args.quick else ""))
+    print()
+    print(
+        f"B = {channels} channels x T = {samples:,} samples at 1 kHz; numba {numba.__version__}, "
+        f"Python {platform.python_version()}, {platform.machine()}; load average {load}; "
+        f"median of {repeats} runs, the two sides alternating"
+    )
+    print()
+    print("| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt | agree to |")
+    print("|---|---:|---:|---:|---:|")
+    failures = []
+    for case in CASES:
+        expected = leuven_rt.simulate(case.params, v, DT, case.scheme)
+        out = np.empty_like(v)
+        case.peer(v, out)
+        scale = float(np.max(np.abs(expected)))
+        agreement = float(np.max(np.abs(out - expected))) / scale
+        if not agreement <= AGREEMENT:
+            failures.append(f"{case.name}: numba and leuven-rt differ by {agreement:.1e} (relative)")
+        library_run = lambda c=case: leuven_rt.simulate(c.params, v, DT, c.scheme)  # noqa: E731
+        peer_run = lambda c=case, out=out: c.peer(v, out)  # noqa: E731
+        # Both were run once above (compiled, pages touched); now alternate, so that a burst of
+        # load elsewhere on the machine falls on both sides alike.
+        library_times, peer_times = [], []
+        for _ in range(repeats):
+            library_times.append(seconds(library_run))
+            peer_times.append(seconds(peer_run))
+        library = float(np.median(library_times)) / steps * 1e9
+        peer = float(np.median(peer_times)) / steps * 1e9
+        print(f"| {case.name} | {library:.2f} | {peer:.2f} | {peer / library:.2f}x | {agreement:.0e} |")
+    if failures:
+        sys.exit("\n".join(failures))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,25 @@
+"""The numba peers of benches/peers.py compute the library's step: otherwise the README's ratios
+would compare two different things. The bench itself refuses to print a ratio for a peer that
+disagrees with ``leuven_rt.simulate`` by more than 1e-9 (relative); here it runs small."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("numba", reason="the peers are numba loops: pip install 'leuven-rt[bench]'")
+
+PEERS = Path(__file__).resolve().parents[2] / "benches" / "peers.py"
+
+
+@pytest.mark.timeout(300)
+def test_every_peer_agrees_with_the_library() -> None:
+    run = subprocess.run([sys.executable, str(PEERS), "--quick"], capture_output=True, text=True, check=False)
+    assert run.returncode == 0, run.stderr
+    rows = [
+        line for line in run.stdout.splitlines() if line.startswith("| LuGre") or line.startswith("| Leuven")
+    ]
+    assert len(rows) == 4, run.stdout
