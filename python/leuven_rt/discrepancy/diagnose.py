@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NoReturn
@@ -27,8 +28,9 @@ from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
 from ..errors import InputError
 from ..units import unit_names
+from .drive import Drive
 from .effects import CATALOGUE, DRIFT, parse_effects
-from .features import Features, compute_features
+from .features import Features, compute_features, thin
 from .localise import regions, where_improved, where_unexplained
 from .model import ModelFit, fit_model
 from .report import Diagnosis, Step
@@ -40,6 +42,10 @@ from .settings import Settings
 DEFAULT_BASELINE = ("coulomb", "viscous")
 #: Effects tried in pairs when none counts alone: the best this many single additions.
 PAIRED = 4
+#: Most usable samples the fits and scores use: a longer record is fitted on every k-th sample
+#: (docs/effects.md#fitting-mechanics), its signals and the presliding simulation computed on
+#: every sample first.
+FIT_SAMPLES = 2**16
 
 
 @dataclass
@@ -54,6 +60,8 @@ class _Selection:
     residual: FloatArray
     residuals: list[FloatArray]
     steps: list[Step]
+    models: list[ModelFit]
+    """The model of each residual."""
 
 
 def diagnose(
@@ -76,17 +84,17 @@ def diagnose(
     elif not isinstance(settings, Settings):
         raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
     record = as_motion_data(data)
-    features = compute_features(record)
+    full = compute_features(record)
+    stride = math.ceil(np.count_nonzero(full.usable) / FIT_SAMPLES)
+    features = thin(full, stride) if stride > 1 else full
     folds = blocks(features, settings.folds)
     usable = features.usable
     # The noise is read from the force and from what the baseline leaves (its steps at reversals
     # and slow changes gone); each can only overstate it, by the force's own changes that the
     # differences keep, and neither can exceed what the baseline leaves.
     baseline_fit = fit_model(effects, features, usable)
-    start = features.force - baseline_fit.predict(features)
-    noise = min(
-        noise_floor(record.f), noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2)))
-    )
+    start = full.force - baseline_fit.predict(full)
+    noise = min(noise_floor(record.f), noise_floor(start[full.usable]), _rms(start, full.usable))
     unit = unit_names(record.units).force
 
     # One BLAS thread: the fits are many small factorisations, which threads slow down on a busy
@@ -101,25 +109,30 @@ def diagnose(
         # with the drift fitted alongside, and the drift is reported as unexplained.
         drift = significant(
             run.score,
-            cross_validate((*run.effects, DRIFT.name), run.features, folds),
+            cross_validate((*run.effects, DRIFT.name), run.features, folds, _held(run.model, run.features)),
             noise,
             dataclasses.replace(settings, significance=settings.drift),
         )
         if drift:
             run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
 
-    residual = run.residual
+    final, residuals = run.features, run.residuals
+    if features is not full:  # every sample's residuals, for the report
+        final = dataclasses.replace(full, scales=run.features.scales)
+        residuals = [start if model is baseline_fit else _full_residual(model, final) for model in run.models]
+        usable = final.usable
+    residual = residuals[-1]
     excess = float(np.mean(residual[usable] ** 2)) - noise**2
-    where = where_unexplained(run.features, residual, noise, unit)
+    where = where_unexplained(final, residual, noise, unit)
     if drift:
         where = f"{DRIFT.missing} (a drift, outside the catalogue); {where}"
     return Diagnosis(
         samples=record.samples, noise_std=noise, baseline=effects,
-        rms_before=_rms(run.residuals[0], usable), rms_after=_rms(residual, usable), steps=run.steps,
+        rms_before=_rms(residuals[0], usable), rms_after=_rms(residual, usable), steps=run.steps,
         unexplained_significant=bool(drift or excess > settings.unexplained * noise**2),
         unexplained_where=where, drift=drift, settings=settings,
-        final_model=run.model, regions_before=regions(run.features, run.residuals[0]),
-        regions_after=regions(run.features, residual), features=run.features, residuals=run.residuals,
+        final_model=run.model, regions_before=regions(final, residuals[0]),
+        regions_after=regions(final, residual), features=final, residuals=residuals,
         units=record.units,
     )  # fmt: skip
 
@@ -141,7 +154,7 @@ def _select(
         model = fit_model(effects, features, usable)
     residual = features.force - model.predict(features)
     current = cross_validate(effects, features, folds) if effects else zero_score(features, folds)
-    run = _Selection(effects, features, model, current, residual, [residual], [])
+    run = _Selection(effects, features, model, current, residual, [residual], [], [model])
     while True:
         candidates = [name for name in CATALOGUE if name not in run.effects]
         if not candidates:
@@ -151,8 +164,9 @@ def _select(
             run.features, position = _ripples(run, folds, noise)
             if position is not None:
                 known["position_dependence"] = position
+        held = _held(run.model, run.features)
         fresh = iter(
-            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar)
+            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar, held)
         )
         scores = [known[name] if name in known else next(fresh) for name in candidates]  # catalogue order
         best = _choose_present(current, scores, run.features, noise, settings)
@@ -163,7 +177,7 @@ def _select(
             ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
             pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
-            paired = _score(run.effects, pairs, run.features, folds, bar)
+            paired = _score(run.effects, pairs, run.features, folds, bar, held)
             best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
@@ -185,6 +199,7 @@ def _select(
             )
             run.effects, run.model, run.residual = effects_now, model, after
             run.residuals.append(after)
+            run.models.append(model)
         current = run.score = best_score
     return run
 
@@ -197,7 +212,7 @@ def _choose_present(
     the effect. Returns the candidate with its fit on the whole record."""
     left = list(scores)
     while (best := choose(current, left, noise, settings)) is not None:
-        fit = fit_model(best.effects, features, features.usable)
+        fit = best.fit if best.fit is not None else fit_model(best.effects, features, features.usable)
         added = best.effects[len(current.effects) :]
         if all(any(fit.coefficients[name] != 0.0 for name in fit.groups[effect]) for effect in added):
             return best, fit
@@ -220,7 +235,10 @@ def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> t
     if len(options) == 1:
         return options[0], None
     effects = (*run.effects, "position_dependence")
-    scored = [(cross_validate(effects, features, folds), features) for features in options]
+    scored = [
+        (cross_validate(effects, features, folds, _held(run.model, features)), features)
+        for features in options
+    ]
     score, features = min(scored, key=lambda pair: pair[0].mse)
     return features, score
 
@@ -231,15 +249,36 @@ def _score(
     features: Features,
     folds: list[NDArray[np.bool_]],
     bar: tqdm[NoReturn],
+    held: tuple[Drive, Features] | None = None,
 ) -> list[Score]:
     bar.total = (bar.total or 0) + len(additions)
     bar.refresh()
     scores = []
     for addition in additions:
         bar.set_postfix_str("+".join(addition))
-        scores.append(cross_validate((*effects, *addition), features, folds))
+        scores.append(cross_validate((*effects, *addition), features, folds, held))
         bar.update(1)
     return scores
+
+
+def _held(model: ModelFit, features: Features) -> tuple[Drive, Features] | None:
+    """The presliding drive of the current ``model`` and ``features`` driven by it: held while
+    the candidates are scored (each candidate's fit re-searched the drive, six simulations of the
+    record, for a drive that the added column barely moves); the step that adds the chosen
+    effect searches it again."""
+    if model.drive is None:
+        return None
+    if model.driven is not None:
+        return model.drive, dataclasses.replace(model.driven[1], scales=features.scales)
+    return model.drive, model.drive.apply(features)
+
+
+def _full_residual(model: ModelFit, features: Features) -> FloatArray:
+    """The residual of ``model`` on every sample of ``features`` (with the ripple periods it was
+    fitted with)."""
+    scales = dataclasses.replace(features.scales, periods=model.periods)
+    out: FloatArray = features.force - model.predict(dataclasses.replace(features, scales=scales))
+    return out
 
 
 def _rms(residual: FloatArray, usable: NDArray[np.bool_]) -> float:

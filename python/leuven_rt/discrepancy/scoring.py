@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..errors import InputError
+from .drive import Drive
 from .features import Features
 from .model import PRESLIDING, Design, ModelFit, fit_driven
 from .settings import Settings
@@ -59,7 +60,12 @@ def blocks(features: Features, folds: int) -> list[NDArray[np.bool_]]:
     return masks
 
 
-def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArray[np.bool_]]) -> Score:
+def cross_validate(
+    effects: Sequence[str],
+    features: Features,
+    folds: list[NDArray[np.bool_]],
+    held: tuple[Drive, Features] | None = None,
+) -> Score:
     """Held-out residuals of ``effects``: every block predicted by the model (its coefficients and
     the Stribeck shape) fitted to the other blocks, from normal equations formed once per block.
 
@@ -67,11 +73,13 @@ def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArr
     each trial) is fitted once on all usable samples and held by every fold: one exponent of
     three and the weights' ratios, against tens of thousands of held-out samples, so that it
     adds nothing measurable to the held-out error, while fitting it per fold took four times the
-    simulations."""
+    simulations. ``held``: a drive and ``features`` driven by it, held instead (no simulation)."""
     effects = tuple(effects)
     usable = features.usable
     whole, drive, driven = None, None, features
-    if PRESLIDING in effects:
+    if held is not None and PRESLIDING in effects:
+        drive, driven = held
+    elif PRESLIDING in effects:
         whole = fit_driven(effects, features, usable)
         if whole.driven is not None:
             drive, driven = whole.drive, whole.driven[1]
@@ -79,10 +87,10 @@ def cross_validate(effects: Sequence[str], features: Features, folds: list[NDArr
     residual = np.empty(int(np.count_nonzero(usable)))
     fold_mse = []
     coefficients = 0
-    for held in range(len(folds)):
-        fit, normal = design.fit([block for block in range(len(folds)) if block != held], drive)
-        error = normal.residual(np.array([fit.coefficients[name] for name in normal.names]), held)
-        residual[design.spans[held]] = error
+    for out in range(len(folds)):
+        fit, normal = design.fit([block for block in range(len(folds)) if block != out], drive)
+        error = normal.residual(np.array([fit.coefficients[name] for name in normal.names]), out)
+        residual[design.spans[out]] = error
         fold_mse.append(float(np.mean(error**2)))
         coefficients = len(fit.coefficients)
     return Score(effects, residual, np.asarray(fold_mse), coefficients, whole)
