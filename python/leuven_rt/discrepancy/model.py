@@ -67,7 +67,8 @@ class ModelFit:
         prediction = np.zeros_like(features.force)
         for name in self.effects:  # effect by effect: only one effect's columns at a time
             for column_name, column in TERMS[name].columns(features, self.effects, self.shape).items():
-                prediction += self.coefficients[column_name] * column
+                # a column the fitted samples did not have (Fc_rest, rest too short there) is 0
+                prediction += self.coefficients.get(column_name, 0.0) * column
         return prediction
 
     def params(self, effect: str) -> dict[str, float]:
