@@ -32,7 +32,7 @@ from .drive import Drive
 from .effects import CATALOGUE, DRIFT, parse_effects
 from .features import Features, compute_features, thin
 from .localise import regions, where_improved, where_unexplained
-from .model import ModelFit, fit_model
+from .model import PRESLIDING, ModelFit, fit_model
 from .report import Diagnosis, Step
 from .ripple import find_periods
 from .scoring import Score, blocks, choose, cross_validate, significant, zero_score
@@ -46,10 +46,13 @@ PAIRED = 4
 #: (docs/effects.md#fitting-mechanics), its signals and the presliding simulation computed on
 #: every sample first.
 FIT_SAMPLES = 2**16
-#: Hold the current model's presliding drive while candidates are scored (instead of searching it
-#: again for each). Off: it divides the simulations by about four, but on the Franka case4_slow
-#: log the held-out rms of identify rose from 0.0457 to 0.0487 with it.
-HOLD_DRIVE = False
+#: Hold the current model's presliding drive while candidates are scored, instead of searching it
+#: again for each (six simulations of the record per candidate): the held drive screens them.
+HOLD_DRIVE = True
+#: With the drive held: how many of the best candidates that gain are scored again with the drive
+#: searched for them. The added effect is chosen on those scores, and its model (the final one
+#: included) always gets a drive search of its own (docs/effects.md#how-an-effect-is-fitted).
+SEARCHED = 1
 
 
 @dataclass
@@ -173,6 +176,7 @@ def _select(
             _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar, held)
         )
         scores = [known[name] if name in known else next(fresh) for name in candidates]  # catalogue order
+        scores = _searched(current, scores, run.features, folds, bar, held)
         best = _choose_present(current, scores, run.features, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
             # No effect helps alone, yet the model is far from the data: some effects only help
@@ -182,10 +186,13 @@ def _select(
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
             pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
             paired = _score(run.effects, pairs, run.features, folds, bar, held)
+            paired = _searched(current, paired, run.features, folds, bar, held)
             best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
         best_score, best_fit = best
+        if held is not None:  # the score of the chosen set with its own drive (no simulation)
+            best_score = _own_drive(best_score, best_fit, run.features, folds)
         added = best_score.effects[len(run.effects) :]
         for name in added:  # a pair is added one effect at a time, each step with its numbers
             effects_now = (*run.effects, name)
@@ -263,6 +270,34 @@ def _score(
         scores.append(cross_validate((*effects, *addition), features, folds, held))
         bar.update(1)
     return scores
+
+
+def _searched(
+    current: Score,
+    scores: list[Score],
+    features: Features,
+    folds: list[NDArray[np.bool_]],
+    bar: tqdm[NoReturn],
+    held: tuple[Drive, Features] | None,
+) -> list[Score]:
+    """``scores``, made with the drive ``held``, with the :data:`SEARCHED` best of those that gain
+    on ``current`` scored again with the drive searched for them."""
+    if held is None:
+        return scores
+    gaining = sorted((score for score in scores if score.mse < current.mse), key=lambda score: score.mse)
+    chosen = gaining[:SEARCHED]
+    additions = [score.effects[len(current.effects) :] for score in chosen]
+    again = dict(zip(map(id, chosen), _score(current.effects, additions, features, folds, bar), strict=True))
+    return [again.get(id(score), score) for score in scores]
+
+
+def _own_drive(score: Score, fit: ModelFit, features: Features, folds: list[NDArray[np.bool_]]) -> Score:
+    """``score`` of the set ``fit`` was fitted for, made again with ``fit``'s own drive when it was
+    made with a held one: the score the next round compares with is that of the model it has."""
+    if PRESLIDING not in score.effects or score.fit is fit:
+        return score
+    held = (fit.drive, fit.driven[1]) if fit.drive is not None and fit.driven is not None else None
+    return dataclasses.replace(cross_validate(score.effects, features, folds, held), fit=fit)
 
 
 def _held(model: ModelFit, features: Features) -> tuple[Drive, Features] | None:
