@@ -33,7 +33,7 @@ BASELINE = "coulomb,viscous"
 DURATION, STEP = 31_166 * 2e-4, 2e-4
 SIZES = (30_000, 100_000, 300_000, 1_000_000, 3_600_000)
 QUICK = (30_000, 100_000)
-EMPS = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "emps" / "DATA_EMPS.mat"
+EMPS = Path(__file__).resolve().parents[2] / "shared" / "data" / "emps" / "DATA_EMPS.mat"
 
 
 def generate(samples: int, path: Path) -> None:

@@ -313,9 +313,9 @@ def _held(model: ModelFit, features: Features) -> tuple[Drive, Features] | None:
 
 def _full_residual(model: ModelFit, features: Features) -> FloatArray:
     """The residual of ``model`` on every sample of ``features`` (with the ripple periods it was
-    fitted with)."""
+    fitted with), its driven bank made one element at a time."""
     scales = dataclasses.replace(features.scales, periods=model.periods)
-    out: FloatArray = features.force - model.predict(dataclasses.replace(features, scales=scales))
+    out: FloatArray = features.force - model.predict_by_element(dataclasses.replace(features, scales=scales))
     return out
 
 

@@ -15,6 +15,7 @@ residual is kept.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -23,6 +24,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
 from .._typing import FloatArray
+from ..data.slip import element_deflections
 from .drive import EXPONENTS, Drive
 from .effects import TERMS, Shape, shape_columns
 from .features import Features
@@ -61,6 +63,26 @@ class ModelFit:
         if self.driven is not None and self.driven[0] is features:
             return self.predict_columns(self.driven[1])
         return self.predict_columns(self.drive.apply(features))
+
+    def predict_by_element(self, features: Features) -> FloatArray:
+        """:meth:`predict`, the bank driven by the model's z made one element at a time and added
+        into the prediction: no bank of every sample (for the residuals of a long record, where
+        that bank was the memory peak)."""
+        if self.drive is None:
+            return self.predict(features)
+        z = self.drive.deflection(features)
+        deflections = features.scales.deflections
+        unbanked = dataclasses.replace(features, bank=np.empty((features.force.size, 0)))
+        prediction = np.zeros_like(features.force)
+        for name in self.effects:
+            if name == PRESLIDING:
+                for j in range(deflections.size):
+                    column = element_deflections(z, deflections[j : j + 1])[:, 0]
+                    prediction += self.coefficients.get(f"W{j + 1}", 0.0) * column
+                continue
+            for column_name, column in TERMS[name].columns(unbanked, self.effects, self.shape).items():
+                prediction += self.coefficients.get(column_name, 0.0) * column
+        return prediction
 
     def predict_columns(self, features: Features) -> FloatArray:
         """The prediction on ``features`` as they are (already driven)."""
