@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NoReturn
@@ -27,10 +28,11 @@ from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
 from ..errors import InputError
 from ..units import unit_names
+from .drive import Drive
 from .effects import CATALOGUE, DRIFT, parse_effects
-from .features import Features, compute_features
+from .features import Features, compute_features, thin
 from .localise import regions, where_improved, where_unexplained
-from .model import ModelFit, fit_model
+from .model import PRESLIDING, ModelFit, fit_model
 from .report import Diagnosis, Step
 from .ripple import find_periods
 from .scoring import Score, blocks, choose, cross_validate, significant, zero_score
@@ -40,6 +42,17 @@ from .settings import Settings
 DEFAULT_BASELINE = ("coulomb", "viscous")
 #: Effects tried in pairs when none counts alone: the best this many single additions.
 PAIRED = 4
+#: Most usable samples the fits and scores use: a longer record is fitted on every k-th sample
+#: (docs/effects.md#fitting-mechanics), its signals and the presliding simulation computed on
+#: every sample first.
+FIT_SAMPLES = 2**16
+#: Hold the current model's presliding drive while candidates are scored, instead of searching it
+#: again for each (six simulations of the record per candidate): the held drive screens them.
+HOLD_DRIVE = True
+#: With the drive held: how many of the best candidates that gain are scored again with the drive
+#: searched for them. The added effect is chosen on those scores, and its model (the final one
+#: included) always gets a drive search of its own (docs/effects.md#how-an-effect-is-fitted).
+SEARCHED = 1
 
 
 @dataclass
@@ -54,6 +67,8 @@ class _Selection:
     residual: FloatArray
     residuals: list[FloatArray]
     steps: list[Step]
+    models: list[ModelFit]
+    """The model of each residual."""
 
 
 def diagnose(
@@ -76,17 +91,17 @@ def diagnose(
     elif not isinstance(settings, Settings):
         raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
     record = as_motion_data(data)
-    features = compute_features(record)
+    full = compute_features(record)
+    stride = math.ceil(np.count_nonzero(full.usable) / FIT_SAMPLES)
+    features = thin(full, stride) if stride > 1 else full
     folds = blocks(features, settings.folds)
     usable = features.usable
     # The noise is read from the force and from what the baseline leaves (its steps at reversals
     # and slow changes gone); each can only overstate it, by the force's own changes that the
     # differences keep, and neither can exceed what the baseline leaves.
     baseline_fit = fit_model(effects, features, usable)
-    start = features.force - baseline_fit.predict(features)
-    noise = min(
-        noise_floor(record.f), noise_floor(start[usable]), float(np.sqrt(np.mean(start[usable] ** 2)))
-    )
+    start = full.force - baseline_fit.predict(full)
+    noise = min(noise_floor(record.f), noise_floor(start[full.usable]), _rms(start, full.usable))
     unit = unit_names(record.units).force
 
     # One BLAS thread: the fits are many small factorisations, which threads slow down on a busy
@@ -101,25 +116,30 @@ def diagnose(
         # with the drift fitted alongside, and the drift is reported as unexplained.
         drift = significant(
             run.score,
-            cross_validate((*run.effects, DRIFT.name), run.features, folds),
+            cross_validate((*run.effects, DRIFT.name), run.features, folds, _held(run.model, run.features)),
             noise,
             dataclasses.replace(settings, significance=settings.drift),
         )
         if drift:
             run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
 
-    residual = run.residual
+    final, residuals = run.features, run.residuals
+    if features is not full:  # every sample's residuals, for the report
+        final = dataclasses.replace(full, scales=run.features.scales)
+        residuals = [start if model is baseline_fit else _full_residual(model, final) for model in run.models]
+        usable = final.usable
+    residual = residuals[-1]
     excess = float(np.mean(residual[usable] ** 2)) - noise**2
-    where = where_unexplained(run.features, residual, noise, unit)
+    where = where_unexplained(final, residual, noise, unit)
     if drift:
         where = f"{DRIFT.missing} (a drift, outside the catalogue); {where}"
     return Diagnosis(
         samples=record.samples, noise_std=noise, baseline=effects,
-        rms_before=_rms(run.residuals[0], usable), rms_after=_rms(residual, usable), steps=run.steps,
+        rms_before=_rms(residuals[0], usable), rms_after=_rms(residual, usable), steps=run.steps,
         unexplained_significant=bool(drift or excess > settings.unexplained * noise**2),
         unexplained_where=where, drift=drift, settings=settings,
-        final_model=run.model, regions_before=regions(run.features, run.residuals[0]),
-        regions_after=regions(run.features, residual), features=run.features, residuals=run.residuals,
+        final_model=run.model, regions_before=regions(final, residuals[0]),
+        regions_after=regions(final, residual), features=final, residuals=residuals,
         units=record.units,
     )  # fmt: skip
 
@@ -141,7 +161,7 @@ def _select(
         model = fit_model(effects, features, usable)
     residual = features.force - model.predict(features)
     current = cross_validate(effects, features, folds) if effects else zero_score(features, folds)
-    run = _Selection(effects, features, model, current, residual, [residual], [])
+    run = _Selection(effects, features, model, current, residual, [residual], [], [model])
     while True:
         candidates = [name for name in CATALOGUE if name not in run.effects]
         if not candidates:
@@ -151,10 +171,12 @@ def _select(
             run.features, position = _ripples(run, folds, noise)
             if position is not None:
                 known["position_dependence"] = position
+        held = _held(run.model, run.features)
         fresh = iter(
-            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar)
+            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar, held)
         )
         scores = [known[name] if name in known else next(fresh) for name in candidates]  # catalogue order
+        scores = _searched(current, scores, run.features, folds, bar, held)
         best = _choose_present(current, scores, run.features, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
             # No effect helps alone, yet the model is far from the data: some effects only help
@@ -163,11 +185,14 @@ def _select(
             ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
             pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
-            paired = _score(run.effects, pairs, run.features, folds, bar)
+            paired = _score(run.effects, pairs, run.features, folds, bar, held)
+            paired = _searched(current, paired, run.features, folds, bar, held)
             best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
         best_score, best_fit = best
+        if held is not None:  # the score of the chosen set with its own drive (no simulation)
+            best_score = _own_drive(best_score, best_fit, run.features, folds)
         added = best_score.effects[len(run.effects) :]
         for name in added:  # a pair is added one effect at a time, each step with its numbers
             effects_now = (*run.effects, name)
@@ -185,6 +210,7 @@ def _select(
             )
             run.effects, run.model, run.residual = effects_now, model, after
             run.residuals.append(after)
+            run.models.append(model)
         current = run.score = best_score
     return run
 
@@ -197,7 +223,7 @@ def _choose_present(
     the effect. Returns the candidate with its fit on the whole record."""
     left = list(scores)
     while (best := choose(current, left, noise, settings)) is not None:
-        fit = fit_model(best.effects, features, features.usable)
+        fit = best.fit if best.fit is not None else fit_model(best.effects, features, features.usable)
         added = best.effects[len(current.effects) :]
         if all(any(fit.coefficients[name] != 0.0 for name in fit.groups[effect]) for effect in added):
             return best, fit
@@ -220,7 +246,10 @@ def _ripples(run: _Selection, folds: list[NDArray[np.bool_]], noise: float) -> t
     if len(options) == 1:
         return options[0], None
     effects = (*run.effects, "position_dependence")
-    scored = [(cross_validate(effects, features, folds), features) for features in options]
+    scored = [
+        (cross_validate(effects, features, folds, _held(run.model, features)), features)
+        for features in options
+    ]
     score, features = min(scored, key=lambda pair: pair[0].mse)
     return features, score
 
@@ -231,15 +260,63 @@ def _score(
     features: Features,
     folds: list[NDArray[np.bool_]],
     bar: tqdm[NoReturn],
+    held: tuple[Drive, Features] | None = None,
 ) -> list[Score]:
     bar.total = (bar.total or 0) + len(additions)
     bar.refresh()
     scores = []
     for addition in additions:
         bar.set_postfix_str("+".join(addition))
-        scores.append(cross_validate((*effects, *addition), features, folds))
+        scores.append(cross_validate((*effects, *addition), features, folds, held))
         bar.update(1)
     return scores
+
+
+def _searched(
+    current: Score,
+    scores: list[Score],
+    features: Features,
+    folds: list[NDArray[np.bool_]],
+    bar: tqdm[NoReturn],
+    held: tuple[Drive, Features] | None,
+) -> list[Score]:
+    """``scores``, made with the drive ``held``, with the :data:`SEARCHED` best of those that gain
+    on ``current`` scored again with the drive searched for them."""
+    if held is None:
+        return scores
+    gaining = sorted((score for score in scores if score.mse < current.mse), key=lambda score: score.mse)
+    chosen = gaining[:SEARCHED]
+    additions = [score.effects[len(current.effects) :] for score in chosen]
+    again = dict(zip(map(id, chosen), _score(current.effects, additions, features, folds, bar), strict=True))
+    return [again.get(id(score), score) for score in scores]
+
+
+def _own_drive(score: Score, fit: ModelFit, features: Features, folds: list[NDArray[np.bool_]]) -> Score:
+    """``score`` of the set ``fit`` was fitted for, made again with ``fit``'s own drive when it was
+    made with a held one: the score the next round compares with is that of the model it has."""
+    if PRESLIDING not in score.effects or score.fit is fit:
+        return score
+    held = (fit.drive, fit.driven[1]) if fit.drive is not None and fit.driven is not None else None
+    return dataclasses.replace(cross_validate(score.effects, features, folds, held), fit=fit)
+
+
+def _held(model: ModelFit, features: Features) -> tuple[Drive, Features] | None:
+    """With :data:`HOLD_DRIVE`: the presliding drive of the current ``model`` and ``features``
+    driven by it, held while the candidates are scored; the step that adds the chosen effect
+    searches it again."""
+    if model.drive is None or not HOLD_DRIVE:
+        return None
+    if model.driven is not None:
+        return model.drive, dataclasses.replace(model.driven[1], scales=features.scales)
+    return model.drive, model.drive.apply(features)
+
+
+def _full_residual(model: ModelFit, features: Features) -> FloatArray:
+    """The residual of ``model`` on every sample of ``features`` (with the ripple periods it was
+    fitted with), its driven bank made one element at a time."""
+    scales = dataclasses.replace(features.scales, periods=model.periods)
+    out: FloatArray = features.force - model.predict_by_element(dataclasses.replace(features, scales=scales))
+    return out
 
 
 def _rms(residual: FloatArray, usable: NDArray[np.bool_]) -> float:

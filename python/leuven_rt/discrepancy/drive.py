@@ -55,7 +55,15 @@ class Drive:
         return LeuvenModel(params).trace_position(features.x, features.dt).z
 
     def apply(self, features: Features) -> Features:
-        """``features`` with the bank driven by z instead of x."""
-        return dataclasses.replace(
-            features, bank=element_deflections(self.deflection(features), features.scales.deflections)
-        )
+        """``features`` with the bank driven by z instead of x. Thinned features
+        (:func:`~.features.thin`) are driven by the z of every sample, kept on their samples."""
+        deflections = features.scales.deflections
+        if features.full is None or features.index is None:
+            return dataclasses.replace(
+                features, bank=element_deflections(self.deflection(features), deflections)
+            )
+        z = self.deflection(features.full)
+        bank = np.empty((features.index.size, deflections.size))
+        for j in range(deflections.size):  # one element at a time: no bank of every sample
+            bank[:, j] = element_deflections(z, deflections[j : j + 1])[features.index, 0]
+        return dataclasses.replace(features, bank=bank)

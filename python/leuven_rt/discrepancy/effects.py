@@ -71,6 +71,15 @@ def _stribeck(f: Features, model: Collection[str], shape: Shape | None) -> dict[
     return {"Fs_minus_Fc": f.sign * np.exp(-(np.abs(f.v / shape.Vs) ** shape.delta))}
 
 
+def shape_columns(f: Features, model: Collection[str], shape: Shape) -> dict[str, FloatArray]:
+    """The columns of ``model`` that depend on the Stribeck shape: the Stribeck curve's, and with
+    ``asymmetry`` its negative direction's shift (the columns of :data:`CATALOGUE`, in order)."""
+    out = _stribeck(f, model, shape)
+    if "asymmetry" in model:
+        out["Fs_neg_shift"] = np.minimum(out["Fs_minus_Fc"], 0.0)
+    return out
+
+
 def _position(f: Features, model: Collection[str], shape: Shape | None) -> dict[str, FloatArray]:
     out = {}
     for degree in range(1, POSITION_DEGREE + 1):

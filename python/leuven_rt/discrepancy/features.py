@@ -94,6 +94,24 @@ class Features:
     usable: NDArray[np.bool_]
     """False on the filters' edge transients at both ends."""
     dt: float
+    full: Features | None = None
+    """For the features of every ``stride``-th sample (:func:`thin`): the features of every
+    sample, which the presliding drive's simulation runs on."""
+    index: NDArray[np.intp] | None = None
+    """For thinned features: the samples of ``full`` they hold."""
+
+
+def thin(features: Features, stride: int) -> Features:
+    """The features of every ``stride``-th sample (the columns computed at the full rate first:
+    the filters, the direction of motion, the bank's slip), for the fits; ``full`` keeps them all."""
+    index = np.arange(0, features.t.size, stride)
+    return Features(
+        t=features.t[index], force=features.force[index], x=features.x[index], v=features.v[index],
+        a=features.a[index], sign=features.sign[index], rest=features.rest[index],
+        position=features.position[index], bank=np.ascontiguousarray(features.bank[index]),
+        scales=features.scales, travel=features.travel[index], usable=features.usable[index],
+        dt=features.dt, full=features, index=index,
+    )  # fmt: skip
 
 
 def direction_of_motion(

@@ -1,28 +1,34 @@
 """A friction model as a set of catalogue effects, fitted by linear least squares on chosen rows.
 
-The coefficients come from the identification's :func:`fit_linear` (nonnegative where the
-effect asks). With ``stribeck`` in the model, its shape (Vs, δ) is fitted by variable
-projection: for each trial shape the linear coefficients are solved exactly (plain least
-squares), and Nelder–Mead moves (log Vs, δ), started from the best of a grid over the speeds.
-With ``presliding_hysteresis``, the bank's drive (:mod:`.drive`) is fitted by fixed-point
-iteration for each exponent n tried: the weights fitted on the bank driven by z give the z of
-the next pass, starting from the bank driven by x; the fit with the smallest residual is kept.
+The columns of a design are put on the fitted rows once, with their normal equations per
+cross-validation block (:mod:`.normal`): every fit on a union of blocks solves the summed Gram
+matrix (bounded at 0 where the effect asks, as the identification's :func:`fit_linear` does).
+With ``stribeck`` in the model, its shape (Vs, δ) is fitted by variable projection: for each
+trial shape the linear coefficients are solved exactly (plain least squares, the other columns'
+normal equations formed once), and ``scipy.optimize.least_squares`` (trust region, bounded)
+moves (log Vs, δ) with the analytic Jacobian of the projected residual, started from the best of
+a grid over the speeds. With ``presliding_hysteresis``, the bank's drive (:mod:`.drive`) is
+fitted by fixed-point iteration for each exponent n tried: the weights fitted on the bank driven
+by z give the z of the next pass, starting from the bank driven by x; the fit with the smallest
+residual is kept.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import minimize
+from scipy.optimize import least_squares
 
 from .._typing import FloatArray
-from ..data.regression import fit_linear
+from ..data.slip import element_deflections
 from .drive import EXPONENTS, Drive
-from .effects import TERMS, Shape
+from .effects import TERMS, Shape, shape_columns
 from .features import Features
+from .normal import Normal, spans
 
 Rows = NDArray[np.bool_]
 
@@ -30,6 +36,8 @@ Rows = NDArray[np.bool_]
 DELTA_RANGE = (0.5, 4.0)
 #: Fixed-point passes of the presliding drive for each exponent n.
 DRIVE_PASSES = 2
+#: Most residual evaluations of the Stribeck shape's least squares (after the grid).
+SHAPE_EVALUATIONS = 40
 PRESLIDING = "presliding_hysteresis"
 
 
@@ -45,16 +53,44 @@ class ModelFit:
     """The ripple periods the position columns were built with."""
     standard_errors: dict[str, float] = field(default_factory=dict)
     """Of each coefficient, from the linear fit (the Stribeck shape and the drive held fixed)."""
+    driven: tuple[Features, Features] | None = field(default=None, repr=False)
+    """The features the fit was made on and the same driven by ``drive``: predicting on them
+    again needs no simulation."""
 
     def predict(self, features: Features) -> FloatArray:
-        return self.predict_columns(self.drive.apply(features) if self.drive is not None else features)
+        if self.drive is None:
+            return self.predict_columns(features)
+        if self.driven is not None and self.driven[0] is features:
+            return self.predict_columns(self.driven[1])
+        return self.predict_columns(self.drive.apply(features))
+
+    def predict_by_element(self, features: Features) -> FloatArray:
+        """:meth:`predict`, the bank driven by the model's z made one element at a time and added
+        into the prediction: no bank of every sample (for the residuals of a long record, where
+        that bank was the memory peak)."""
+        if self.drive is None:
+            return self.predict(features)
+        z = self.drive.deflection(features)
+        deflections = features.scales.deflections
+        unbanked = dataclasses.replace(features, bank=np.empty((features.force.size, 0)))
+        prediction = np.zeros_like(features.force)
+        for name in self.effects:
+            if name == PRESLIDING:
+                for j in range(deflections.size):
+                    column = element_deflections(z, deflections[j : j + 1])[:, 0]
+                    prediction += self.coefficients.get(f"W{j + 1}", 0.0) * column
+                continue
+            for column_name, column in TERMS[name].columns(unbanked, self.effects, self.shape).items():
+                prediction += self.coefficients.get(column_name, 0.0) * column
+        return prediction
 
     def predict_columns(self, features: Features) -> FloatArray:
         """The prediction on ``features`` as they are (already driven)."""
-        columns = design(self.effects, features, self.shape)
         prediction = np.zeros_like(features.force)
-        for name, column in columns.items():
-            prediction += self.coefficients[name] * column
+        for name in self.effects:  # effect by effect: only one effect's columns at a time
+            for column_name, column in TERMS[name].columns(features, self.effects, self.shape).items():
+                # a column the fitted samples did not have (Fc_rest, rest too short there) is 0
+                prediction += self.coefficients.get(column_name, 0.0) * column
         return prediction
 
     def params(self, effect: str) -> dict[str, float]:
@@ -85,91 +121,190 @@ def design(effects: Sequence[str], features: Features, shape: Shape | None) -> d
     return columns
 
 
+class Design:
+    """``effects`` on ``features``: the columns that do not depend on the Stribeck shape put on
+    ``rows`` once, with their normal equations per block of ``blocks`` (subsets of ``rows``)."""
+
+    def __init__(self, effects: tuple[str, ...], features: Features, rows: Rows, blocks: Sequence[Rows]):
+        if not effects:
+            raise ValueError("a design needs at least one effect")
+        self.effects, self.features, self.rows, self.blocks = effects, features, rows, blocks
+        self.spans = spans(rows, blocks)
+        fixed = tuple(name for name in effects if name != "stribeck")
+        columns: dict[str, FloatArray] = {}
+        self.groups: dict[str, tuple[str, ...]] = {}
+        for name in fixed:  # the columns, and the names of each effect's, made once
+            made = TERMS[name].columns(features, fixed, None)
+            self.groups[name] = tuple(made)
+            columns.update(made)
+        if "stribeck" in effects:
+            self.groups["stribeck"] = ("Fs_minus_Fc",)
+            if "asymmetry" in effects:
+                self.groups["asymmetry"] = (*self.groups["asymmetry"], "Fs_neg_shift")
+        self.groups = {name: self.groups[name] for name in effects}
+        self.normal = Normal.build(columns, features.force, rows, blocks) if columns else None
+        self.nonnegative = {column for name in effects for column in TERMS[name].nonnegative}
+
+    def fit(
+        self, use: Sequence[int], drive: Drive | None = None, shape: Shape | None = None
+    ) -> tuple[ModelFit, Normal]:
+        """The fit on the blocks ``use`` (the Stribeck shape fitted there unless given), and the
+        normal equations it was solved from (for its predictions on any block)."""
+        normal = self.normal
+        if "stribeck" in self.effects:
+            if shape is None:
+                shape = _fit_shape(self, use)
+            added = shape_columns(self.features, self.effects, shape)
+            if normal is None:
+                normal = Normal.build(added, self.features.force, self.rows, self.blocks)
+            else:
+                normal = normal.extend(added, self.rows)
+        assert normal is not None
+        periods = self.features.scales.periods
+        coefficients, errors = normal.solve(use, self.nonnegative)
+        fit = ModelFit(self.effects, coefficients, self.groups, shape, drive, periods, errors)
+        return fit, normal
+
+
 def fit_model(effects: Sequence[str], features: Features, rows: Rows, drive: Drive | None = None) -> ModelFit:
     """Coefficients (and the Stribeck shape, and the presliding drive unless ``drive`` is given)
     of ``effects`` fitted on ``rows``."""
     effects = tuple(effects)
-    if PRESLIDING not in effects:
-        return _fit_linear_part(effects, features, rows, None)
-    if drive is not None:
-        return _fit_linear_part(effects, drive.apply(features), rows, drive)
-    return _fit_driven(effects, features, rows)
-
-
-def _fit_linear_part(
-    effects: tuple[str, ...], features: Features, rows: Rows, drive: Drive | None, shape: Shape | None = None
-) -> ModelFit:
-    if shape is None and "stribeck" in effects:
-        shape = _fit_shape(effects, features, rows)
-    groups = {
-        name: tuple(TERMS[name].columns(features, effects, shape or Shape(1.0, 1.0))) for name in effects
-    }
+    if PRESLIDING in effects and drive is None:
+        return fit_driven(effects, features, rows)
     if not effects:
-        return ModelFit(effects, {}, groups, shape, drive, features.scales.periods)
-    columns = design(effects, features, shape)
-    nonnegative = [column for name in effects for column in TERMS[name].nonnegative]
-    fit = fit_linear({key: value[rows] for key, value in columns.items()}, features.force[rows],
-                     nonnegative or False)  # fmt: skip
-    return ModelFit(effects, fit.coefficients, groups, shape, drive, features.scales.periods,
-                    fit.standard_errors)  # fmt: skip
+        return ModelFit(effects, {}, {}, None, drive, features.scales.periods)
+    driven = drive.apply(features) if drive is not None else features
+    fit = Design(effects, driven, rows, [rows]).fit([0], drive)[0]
+    if drive is not None:
+        return _with_driven(fit, features, driven)
+    return fit
+
+
+def _with_driven(fit: ModelFit, features: Features, driven: Features) -> ModelFit:
+    return ModelFit(fit.effects, fit.coefficients, fit.groups, fit.shape, fit.drive, fit.periods,
+                    fit.standard_errors, (features, driven))  # fmt: skip
 
 
 def _weights(fit: ModelFit) -> tuple[float, ...]:
     return tuple(max(fit.coefficients[name], 0.0) for name in fit.groups[PRESLIDING])
 
 
-def _fit_driven(effects: tuple[str, ...], features: Features, rows: Rows) -> ModelFit:
+def fit_driven(effects: tuple[str, ...], features: Features, rows: Rows) -> ModelFit:
     """The best fit over the exponents tried, each after DRIVE_PASSES fixed-point passes; the
-    bank stays driven by x when the fit gives no element a positive weight."""
-    undriven = _fit_linear_part(effects, features, rows, None)
+    bank stays driven by x when the fit gives no element a positive weight. The fit keeps the
+    driven features (:attr:`ModelFit.driven`)."""
+    undriven = Design(effects, features, rows, [rows]).fit([0])[0]
     start = _weights(undriven)
     if max(start) <= 0.0:
         return undriven
     # The Stribeck shape is held at the undriven fit's while the drive is searched (the shape
-    # search costs more than a drive pass), then fitted again with the drive chosen.
-    tried: list[tuple[float, ModelFit, Features]] = []
+    # search costs more than a drive pass), then fitted again with the drive chosen. Only the
+    # best pass is kept (each holds a bank of the record's length).
+    best: tuple[float, ModelFit, Features] | None = None
     for n in EXPONENTS:
         drive = Drive(n, start)
         for _ in range(DRIVE_PASSES):
             driven = drive.apply(features)
-            fit = _fit_linear_part(effects, driven, rows, drive, undriven.shape)
-            residual = features.force[rows] - fit.predict_columns(driven)[rows]
-            tried.append((float(residual @ residual), fit, driven))
+            fit, normal = Design(effects, driven, rows, [rows]).fit([0], drive, undriven.shape)
+            theta = np.array([fit.coefficients[name] for name in normal.names])
+            residual = normal.residual(theta, 0)
+            error = float(residual @ residual)
+            if best is None or error < best[0]:
+                best = (error, fit, driven)
             weights = _weights(fit)
             if max(weights) <= 0.0:
                 break
             drive = Drive(n, weights)
-    _, best, driven = min(tried, key=lambda item: item[0])
-    if best.shape is None:
-        return best
-    return _fit_linear_part(effects, driven, rows, best.drive)
+    assert best is not None
+    _, chosen, driven = best
+    if chosen.shape is not None:
+        chosen = Design(effects, driven, rows, [rows]).fit([0], chosen.drive)[0]
+    return _with_driven(chosen, features, driven)
 
 
-def _fit_shape(effects: tuple[str, ...], features: Features, rows: Rows) -> Shape:
+def _fit_shape(design_: Design, use: Sequence[int]) -> Shape:
+    """The Stribeck shape fitted on the blocks ``use`` of ``design_`` (variable projection)."""
+    features, rows = design_.features, design_.rows
+    normal = design_.normal
+    weight = np.zeros(int(np.count_nonzero(rows)))
+    for block in use:
+        weight[design_.spans[block]] = 1.0
+    fitted = np.zeros(features.force.size, dtype=bool)
+    fitted[np.flatnonzero(rows)[weight > 0.0]] = True
     # Vs is searched within the speeds the data visits (moving samples only).
-    speeds = np.abs(features.v[rows & (features.travel > features.scales.deflections[-1])])
+    speeds = np.abs(features.v[fitted & (features.travel > features.scales.deflections[-1])])
     high = float(np.percentile(speeds, 95))
     low = max(float(np.percentile(speeds, 2)), 1e-3 * high)
-
     bounds = np.log([low, high])
-    # Only the Stribeck column moves with the shape: the normal equations of the other columns
-    # are formed once, and each trial adds one row and column (plain least squares, no bounds).
-    others = [name for name in effects if name != "stribeck"]
-    matrix = np.column_stack(
-        [c[rows] for c in design(others, features, None).values()] or [np.zeros(int(rows.sum()))]
-    )
-    target, sign, speed = features.force[rows], features.sign[rows], np.abs(features.v[rows])
-    gram, moment = matrix.T @ matrix, matrix.T @ target
+
+    # Only the Stribeck column moves with the shape: the other columns' normal equations are
+    # formed once (summed over the blocks), and each trial adds one row and column.
+    if normal is not None:
+        matrix = np.column_stack(normal.parts) if len(normal.parts) > 1 else normal.parts[0]
+        gram, moment = normal.gram[list(use)].sum(axis=0), normal.moment[list(use)].sum(axis=0)
+        target = normal.target
+    else:
+        matrix = np.zeros((weight.size, 1))
+        gram, moment = np.zeros((1, 1)), np.zeros(1)
+        target = np.ascontiguousarray(features.force[rows])
+    square = float((weight * target) @ target)
+    sign, speed = features.sign[rows], np.abs(features.v[rows])
+    moving = speed > 0.0
+    log_speed = np.log(np.where(moving, speed, 1.0))
+
+    def project(p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The Stribeck column, u = (|v|/Vs)^δ, the coefficients and the solved system's right side."""
+        u = np.where(moving, np.exp(p[1] * (log_speed - p[0])), 0.0)
+        column = sign * np.exp(-u)
+        weighted = weight * column
+        cross = matrix.T @ weighted
+        system = np.block([[gram, cross[:, None]], [cross[None, :], np.array([[weighted @ column]])]])
+        right = np.append(moment, weighted @ target)
+        theta = np.linalg.lstsq(system, right, rcond=None)[0]
+        return column, u, theta, right
 
     def cost(p: FloatArray) -> float:
-        column = sign * np.exp(-((speed / np.exp(np.clip(p[0], *bounds))) ** np.clip(p[1], *DELTA_RANGE)))
-        cross = matrix.T @ column
-        system = np.block([[gram, cross[:, None]], [cross[None, :], np.array([[column @ column]])]])
-        right = np.append(moment, column @ target)
-        theta = np.linalg.lstsq(system, right, rcond=None)[0]
-        return float(target @ target - theta @ right)  # the residual sum of squares
+        _, _, theta, right = project(p)
+        return float(square - theta @ right)  # the residual sum of squares
+
+    cache: dict[bytes, tuple[FloatArray, FloatArray, FloatArray, FloatArray]] = {}
+
+    def solved(p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        key = np.asarray(p, dtype=np.float64).tobytes()
+        if key not in cache:
+            cache.clear()
+            cache[key] = project(p)
+        return cache[key]
+
+    def residual(p: FloatArray) -> FloatArray:
+        column, _, theta, _ = solved(p)
+        out: FloatArray = weight * (target - matrix @ theta[:-1] - theta[-1] * column)
+        return out
+
+    def jacobian(p: FloatArray) -> FloatArray:
+        # Kaufman's variable projection Jacobian: −P⊥·(∂column/∂p)·θ_stribeck, P⊥ the projection
+        # off the columns (the Stribeck column included) on the fitted rows.
+        column, u, theta, _ = solved(p)
+        derivatives = np.column_stack(
+            [column * u * p[1], -column * u * np.where(moving, log_speed - p[0], 0.0)]
+        )
+        weighted = weight[:, None] * derivatives
+        full_gram = np.block([[gram, (matrix.T @ (weight * column))[:, None]],
+                              [(matrix.T @ (weight * column))[None, :],
+                               np.array([[(weight * column) @ column]])]])  # fmt: skip
+        moments = np.vstack([matrix.T @ weighted, column @ weighted])
+        coefficients = np.linalg.lstsq(full_gram, moments, rcond=None)[0]
+        projected = derivatives - matrix @ coefficients[:-1] - np.outer(column, coefficients[-1])
+        out: FloatArray = -theta[-1] * weight[:, None] * projected
+        return out
 
     grid = [np.array([np.log(vs), delta]) for vs in np.geomspace(low, high, 8) for delta in (1.0, 2.0)]
-    start = min(grid, key=cost)
-    result = minimize(cost, start, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-9, "maxfev": 80})
-    return Shape(float(np.exp(np.clip(result.x[0], *bounds))), float(np.clip(result.x[1], *DELTA_RANGE)))
+    start = np.clip(min(grid, key=cost), (bounds[0], DELTA_RANGE[0]), (bounds[1], DELTA_RANGE[1]))
+    if not bounds[0] < bounds[1]:
+        return Shape(float(np.exp(start[0])), float(start[1]))
+    result = least_squares(residual, start, jac=jacobian,
+                           bounds=((bounds[0], DELTA_RANGE[0]), (bounds[1], DELTA_RANGE[1])),
+                           method="trf", max_nfev=SHAPE_EVALUATIONS)  # fmt: skip
+    best = result.x if cost(result.x) <= cost(start) else start
+    return Shape(float(np.exp(np.clip(best[0], *bounds))), float(np.clip(best[1], *DELTA_RANGE)))
