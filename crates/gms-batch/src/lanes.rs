@@ -1,0 +1,249 @@
+//! The hysteresis force of L channels at once, laid out structure-of-arrays: for Maxwell slip,
+//! ζ[element][lane], so that one element of every lane is one contiguous row.
+//!
+//! Every lane does exactly gms-core's arithmetic, in the same order: the element loops add into
+//! four partial sums by element index modulo four and add those as `(s0 + s1) + (s2 + s3)`,
+//! as `MaxwellSlip` does, so a lane's force, slopes and breakpoints are bit for bit the scalar
+//! ones. The lane loops are plain `for l in 0..L` over arrays, written with selects rather
+//! than branches, which the compiler turns into SIMD for whatever instruction set the calling
+//! function is compiled for (see `dispatch`).
+
+use gms_core::{Hysteresis, Linear, MaxwellSlip, State};
+
+/// Fh of every lane at a candidate deflection and the linear pieces on either side of it:
+/// gms-core's [`Trial`](gms_core::Trial), one value per lane.
+#[derive(Clone, Copy, Debug)]
+pub struct TrialLanes<const L: usize> {
+    /// Fh(z).
+    pub force: [f64; L],
+    /// dFh/dz on the piece to the left of z.
+    pub slope_left: [f64; L],
+    /// dFh/dz on the piece to the right of z.
+    pub slope_right: [f64; L],
+    /// The nearest breakpoint below z (−∞ if none).
+    pub left: [f64; L],
+    /// The nearest breakpoint above z (+∞ if none).
+    pub right: [f64; L],
+}
+
+/// A hysteresis force that the batch kernel can step: the gms-core types, [`MaxwellSlip`] and
+/// [`Linear`].
+pub trait BatchHysteresis: Hysteresis {
+    /// The constants of the lane loops (stiffnesses and windows), computed once per call.
+    type Kernel: LaneKernel<Memory = Self::Memory>;
+    /// The kernel of this hysteresis.
+    fn kernel(&self) -> Self::Kernel;
+}
+
+/// The hysteresis force of L lanes at once (see the module documentation).
+pub trait LaneKernel: Copy {
+    /// The memory of one channel, as gms-core holds it.
+    type Memory: Copy;
+    /// The memory of L channels, structure-of-arrays.
+    type Lanes<const L: usize>: Copy;
+    /// The most evaluations of the trial an implicit step makes (gms-core's bound: 2N + 1 for
+    /// N elements, 2 for a linear spring).
+    const MAX_TRIALS: u32;
+
+    /// The memories of `states` (L of them), structure-of-arrays.
+    fn gather<const L: usize>(&self, states: &[State<Self::Memory>]) -> Self::Lanes<L>;
+    /// Writes lane l's memory into `states[l]`.
+    fn scatter<const L: usize>(&self, lanes: &Self::Lanes<L>, states: &mut [State<Self::Memory>]);
+    /// Fh of each lane at `z`, as if its memory were moved there.
+    fn force<const L: usize>(&self, lanes: &Self::Lanes<L>, z: &[f64; L]) -> [f64; L];
+    /// Fh of each lane and its pieces at `z`, as if its memory were moved there.
+    fn trial<const L: usize>(&self, lanes: &Self::Lanes<L>, z: &[f64; L]) -> TrialLanes<L>;
+    /// Moves each lane's memory to `z` and returns Fh(z).
+    fn commit<const L: usize>(&self, lanes: &mut Self::Lanes<L>, z: &[f64; L]) -> [f64; L];
+}
+
+/// Independent partial sums of gms-core's element loops.
+const SUMS: usize = 4;
+
+/// gms-core's `(s0 + s1) + (s2 + s3)`, per lane.
+#[inline(always)]
+fn total<const L: usize>(sums: &[[f64; L]; SUMS]) -> [f64; L] {
+    core::array::from_fn(|l| (sums[0][l] + sums[1][l]) + (sums[2][l] + sums[3][l]))
+}
+
+/// gms-core's element clamp: `value` limited to [−limit, limit], no NaN handling.
+#[inline(always)]
+fn clamp(value: f64, limit: f64) -> f64 {
+    let low = if value < -limit { -limit } else { value };
+    if low > limit {
+        limit
+    } else {
+        low
+    }
+}
+
+/// [`MaxwellSlip`]'s constants: stiffness Wᵢ/Δᵢ (computed as gms-core does) and window Δᵢ.
+#[derive(Clone, Copy, Debug)]
+pub struct MaxwellKernel<const N: usize> {
+    stiffness: [f64; N],
+    delta: [f64; N],
+}
+
+impl<const N: usize> BatchHysteresis for MaxwellSlip<N> {
+    type Kernel = MaxwellKernel<N>;
+    fn kernel(&self) -> MaxwellKernel<N> {
+        MaxwellKernel {
+            stiffness: core::array::from_fn(|i| self.w()[i] / self.delta()[i]),
+            delta: *self.delta(),
+        }
+    }
+}
+
+impl<const N: usize> LaneKernel for MaxwellKernel<N> {
+    type Memory = [f64; N];
+    type Lanes<const L: usize> = [[f64; L]; N];
+    #[allow(clippy::cast_possible_truncation)] // N ≤ a few dozen
+    const MAX_TRIALS: u32 = 2 * N as u32 + 1;
+
+    #[inline(always)]
+    fn gather<const L: usize>(&self, states: &[State<[f64; N]>]) -> [[f64; L]; N] {
+        core::array::from_fn(|i| core::array::from_fn(|l| states[l].memory[i]))
+    }
+
+    #[inline(always)]
+    fn scatter<const L: usize>(&self, lanes: &[[f64; L]; N], states: &mut [State<[f64; N]>]) {
+        for (l, state) in states.iter_mut().enumerate().take(L) {
+            for (i, row) in lanes.iter().enumerate() {
+                state.memory[i] = row[l];
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn force<const L: usize>(&self, zeta: &[[f64; L]; N], z: &[f64; L]) -> [f64; L] {
+        let mut force = [[0.0; L]; SUMS];
+        for start in (0..N).step_by(SUMS) {
+            for (sum, force) in force.iter_mut().enumerate() {
+                let i = start + sum;
+                if i < N {
+                    let (k, limit) = (self.stiffness[i], self.delta[i]);
+                    for l in 0..L {
+                        force[l] += k * clamp(z[l] - zeta[i][l], limit);
+                    }
+                }
+            }
+        }
+        total(&force)
+    }
+
+    #[inline(always)]
+    fn trial<const L: usize>(&self, zeta: &[[f64; L]; N], z: &[f64; L]) -> TrialLanes<L> {
+        let mut force = [[0.0; L]; SUMS];
+        let mut slope_left = [[0.0; L]; SUMS];
+        let mut slope_right = [[0.0; L]; SUMS];
+        // The nearest breakpoints are a minimum and a maximum, the same whatever the order in
+        // which the elements are visited: one running value per lane.
+        let mut left = [f64::NEG_INFINITY; L];
+        let mut right = [f64::INFINITY; L];
+        for start in (0..N).step_by(SUMS) {
+            for sum in 0..SUMS {
+                let i = start + sum;
+                if i >= N {
+                    break;
+                }
+                let (k, limit) = (self.stiffness[i], self.delta[i]);
+                for l in 0..L {
+                    let (z, zeta) = (z[l], zeta[i][l]);
+                    let lower = zeta - limit;
+                    let upper = zeta + limit;
+                    force[sum][l] += k * clamp(z - zeta, limit);
+                    slope_right[sum][l] += if lower <= z && z < upper { k } else { 0.0 };
+                    slope_left[sum][l] += if lower < z && z <= upper { k } else { 0.0 };
+                    let above = if lower > z { lower } else { upper };
+                    let below = if upper < z { upper } else { lower };
+                    if above > z && above < right[l] {
+                        right[l] = above;
+                    }
+                    if below < z && below > left[l] {
+                        left[l] = below;
+                    }
+                }
+            }
+        }
+        TrialLanes {
+            force: total(&force),
+            slope_left: total(&slope_left),
+            slope_right: total(&slope_right),
+            left,
+            right,
+        }
+    }
+
+    #[inline(always)]
+    fn commit<const L: usize>(&self, zeta: &mut [[f64; L]; N], z: &[f64; L]) -> [f64; L] {
+        let mut force = [[0.0; L]; SUMS];
+        for start in (0..N).step_by(SUMS) {
+            for (sum, force) in force.iter_mut().enumerate() {
+                let i = start + sum;
+                if i < N {
+                    let (k, limit) = (self.stiffness[i], self.delta[i]);
+                    for l in 0..L {
+                        let deflection = z[l] - zeta[i][l];
+                        let kept = clamp(deflection, limit);
+                        // Only slipping elements move, as in gms-core.
+                        zeta[i][l] = if kept == deflection {
+                            zeta[i][l]
+                        } else {
+                            z[l] - kept
+                        };
+                        force[l] += k * kept;
+                    }
+                }
+            }
+        }
+        total(&force)
+    }
+}
+
+/// [`Linear`]'s constant: the stiffness σ0.
+#[derive(Clone, Copy, Debug)]
+pub struct LinearKernel {
+    sigma0: f64,
+}
+
+impl BatchHysteresis for Linear {
+    type Kernel = LinearKernel;
+    fn kernel(&self) -> LinearKernel {
+        LinearKernel {
+            sigma0: self.sigma0(),
+        }
+    }
+}
+
+impl LaneKernel for LinearKernel {
+    type Memory = ();
+    type Lanes<const L: usize> = ();
+    const MAX_TRIALS: u32 = 2;
+
+    #[inline(always)]
+    fn gather<const L: usize>(&self, _states: &[State<()>]) {}
+
+    #[inline(always)]
+    fn scatter<const L: usize>(&self, _lanes: &(), _states: &mut [State<()>]) {}
+
+    #[inline(always)]
+    fn force<const L: usize>(&self, _lanes: &(), z: &[f64; L]) -> [f64; L] {
+        core::array::from_fn(|l| self.sigma0 * z[l])
+    }
+
+    #[inline(always)]
+    fn trial<const L: usize>(&self, _lanes: &(), z: &[f64; L]) -> TrialLanes<L> {
+        TrialLanes {
+            force: core::array::from_fn(|l| self.sigma0 * z[l]),
+            slope_left: [self.sigma0; L],
+            slope_right: [self.sigma0; L],
+            left: [f64::NEG_INFINITY; L],
+            right: [f64::INFINITY; L],
+        }
+    }
+
+    #[inline(always)]
+    fn commit<const L: usize>(&self, _lanes: &mut (), z: &[f64; L]) -> [f64; L] {
+        core::array::from_fn(|l| self.sigma0 * z[l])
+    }
+}
