@@ -78,8 +78,14 @@ fn batch(c: &mut Criterion) {
     let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
     let w = [0.2; 10];
     let delta = core::array::from_fn(|i| 1e-6 * (i + 1) as f64);
-    let maxwell =
-        Params::new(stribeck, 2.0, 30.0, 0.4, MaxwellSlip::new(w, delta).unwrap()).unwrap();
+    let maxwell = Params::new(
+        stribeck,
+        2.0,
+        30.0,
+        0.4,
+        MaxwellSlip::new(w, delta).unwrap(),
+    )
+    .unwrap();
     bench_case(c, "maxwell10", &maxwell, 10);
     let lugre = Params::new(stribeck, 1.0, 30.0, 0.4, Linear::new(1e5).unwrap()).unwrap();
     bench_case(c, "lugre", &lugre, 1);

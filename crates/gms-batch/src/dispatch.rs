@@ -78,6 +78,8 @@ fn run_baseline<H: BatchHysteresis, const L: usize>(group: Group<'_, H>) -> Resu
 #[target_feature(enable = "avx2,fma")]
 #[inline(never)]
 #[allow(unsafe_code)] // an `unsafe fn` only because of its target features (Rust 1.85)
-unsafe fn run_avx2<H: BatchHysteresis, const L: usize>(group: Group<'_, H>) -> Result<(), Rejected> {
+unsafe fn run_avx2<H: BatchHysteresis, const L: usize>(
+    group: Group<'_, H>,
+) -> Result<(), Rejected> {
     run::<H, L>(group)
 }

@@ -2,10 +2,14 @@
 
 use gms_core::{Params, Scheme, State};
 
+use crate::curve::Curve;
 use crate::lanes::{BatchHysteresis, LaneKernel};
-use crate::math::{Exponent, One, Other, Two};
+use crate::math::{all_finite, lanes, Exponent, One, Other, Two};
 use crate::solver::{solve, Step};
 use crate::Signal;
+
+/// Samples per block (see `run_with`).
+const BLOCK: usize = 64;
 
 /// A lane rejected a sample (a non-finite input, velocity or result): the group's states are
 /// untouched and gms-core runs the group again, to report exactly what it reports.
@@ -40,6 +44,7 @@ pub(crate) fn run<H: BatchHysteresis, const L: usize>(group: Group<'_, H>) -> Re
 }
 
 #[inline(always)]
+#[allow(clippy::too_many_lines)] // one pass over the samples, kept in one piece
 fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
     group: Group<'_, H>,
     exponent: E,
@@ -61,75 +66,118 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
     if !input.iter().all(|x| x.is_finite()) {
         return Err(Rejected);
     }
-    let (stribeck, sigma1, sigma2) = (params.stribeck(), params.sigma1(), params.sigma2());
+    let (curve, sigma1, sigma2) = (
+        Curve::new(params.stribeck()),
+        params.sigma1(),
+        params.sigma2(),
+    );
     let level = match signal {
         Signal::Position(level) if !level.is_flat() => Some(level),
         _ => None,
     };
     let position = matches!(signal, Signal::Position(_));
     let mut memory = kernel.gather::<L>(states);
-    let mut z: [f64; L] = core::array::from_fn(|l| states[l].z);
-    let mut last: [f64; L] = core::array::from_fn(|l| states[l].last_position.unwrap_or(0.0));
-    let mut has_last: [bool; L] = core::array::from_fn(|l| states[l].last_position.is_some());
-    for t in 0..samples {
-        let x: [f64; L] = core::array::from_fn(|l| input[l * samples + t]);
-        let v: [f64; L] = if position {
-            core::array::from_fn(|l| {
-                if has_last[l] {
-                    (x[l] - last[l]) / dt
-                } else {
-                    0.0
+    let mut z: [f64; L] = lanes(|l| states[l].z);
+    let mut last: [f64; L] = lanes(|l| states[l].last_position.unwrap_or(0.0));
+    let mut has_last = [false; L];
+    for (has_last, state) in has_last.iter_mut().zip(&*states) {
+        *has_last = state.last_position.is_some();
+    }
+    // The samples go in blocks: what depends only on the input (the velocity, g(v) and its
+    // exponential) is computed for a whole block in short loops whose iterations are
+    // independent, then the block is stepped sample by sample, then its forces are written out
+    // row by row.
+    let mut x = [[0.0; L]; BLOCK];
+    let mut v = [[0.0; L]; BLOCK];
+    let mut g = [[0.0; L]; BLOCK];
+    let mut forces = [[0.0; L]; BLOCK];
+    for start in (0..samples).step_by(BLOCK) {
+        let len = BLOCK.min(samples - start);
+        for l in 0..L {
+            let row = &input[l * samples + start..l * samples + start + len];
+            for (x, &sample) in x.iter_mut().zip(row) {
+                x[l] = sample;
+            }
+        }
+        for t in 0..len {
+            v[t] = if position {
+                let previous = if t == 0 { last } else { x[t - 1] };
+                let v: [f64; L] = lanes(|l| {
+                    if has_last[l] || t > 0 {
+                        (x[t][l] - previous[l]) / dt
+                    } else {
+                        0.0
+                    }
+                });
+                if !all_finite(&v) {
+                    return Err(Rejected);
                 }
-            })
-        } else {
-            x
-        };
-        if position && !v.iter().all(|v| v.is_finite()) {
-            return Err(Rejected);
+                v
+            } else {
+                x[t]
+            };
         }
-        let z_next = match scheme {
-            Scheme::Implicit => {
-                let step = Step {
-                    z,
-                    dt_v: core::array::from_fn(|l| dt * v[l]),
-                    dt_abs_v: core::array::from_fn(|l| dt * libm::fabs(v[l])),
-                    inverse_g: core::array::from_fn(|l| 1.0 / stribeck.g(v[l])),
-                };
-                solve::<H::Kernel, E, L>(kernel, &memory, &step, exponent).ok_or(Rejected)?
-            }
-            Scheme::Explicit => {
-                let force = kernel.force::<L>(&memory, &z);
-                let g: [f64; L] = core::array::from_fn(|l| stribeck.g(v[l]));
-                core::array::from_fn(|l| {
-                    let u = force[l] / g[l];
-                    z[l] + dt * (v[l] - libm::fabs(v[l]) * exponent.phi(u))
-                })
-            }
-        };
-        if !z_next.iter().all(|z| z.is_finite()) {
-            return Err(Rejected);
+        for t in 0..len {
+            g[t] = match scheme {
+                // The implicit step uses 1/g(v).
+                Scheme::Implicit => {
+                    let g = curve.g(&v[t]);
+                    lanes(|l| 1.0 / g[l])
+                }
+                Scheme::Explicit => curve.g(&v[t]),
+            };
         }
-        let hysteresis = kernel.commit::<L>(&mut memory, &z_next);
-        let mut force: [f64; L] = core::array::from_fn(|l| {
-            hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + sigma2 * v[l]
-        });
-        if !force.iter().all(|force| force.is_finite()) {
-            return Err(Rejected);
+        for t in 0..len {
+            let v = &v[t];
+            let z_next = match scheme {
+                Scheme::Implicit => {
+                    let step = Step {
+                        z,
+                        dt_v: lanes(|l| dt * v[l]),
+                        dt_abs_v: lanes(|l| dt * libm::fabs(v[l])),
+                        inverse_g: g[t],
+                    };
+                    solve::<H::Kernel, E, L>(kernel, &memory, &step, exponent).ok_or(Rejected)?
+                }
+                Scheme::Explicit => {
+                    let force = kernel.force::<L>(&memory, &z);
+                    let g = &g[t];
+                    lanes(|l| {
+                        let u = force[l] / g[l];
+                        z[l] + dt * (v[l] - libm::fabs(v[l]) * exponent.phi(u))
+                    })
+                }
+            };
+            if !all_finite(&z_next) {
+                return Err(Rejected);
+            }
+            let hysteresis = kernel.commit::<L>(&mut memory, &z_next);
+            let force: [f64; L] =
+                lanes(|l| hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + sigma2 * v[l]);
+            if !all_finite(&force) {
+                return Err(Rejected);
+            }
+            forces[t] = force;
+            z = z_next;
         }
         if let Some(level) = level {
-            for l in 0..L {
-                force[l] = level.apply(force[l], x[l], v[l], sigma2);
-            }
-            if !force.iter().all(|force| force.is_finite()) {
-                return Err(Rejected);
+            for t in 0..len {
+                for l in 0..L {
+                    forces[t][l] = level.apply(forces[t][l], x[t][l], v[t][l], sigma2);
+                }
+                if !all_finite(&forces[t]) {
+                    return Err(Rejected);
+                }
             }
         }
         for l in 0..L {
-            out[l * samples + t] = force[l];
+            let row = &mut out[l * samples + start..l * samples + start + len];
+            for (out, force) in row.iter_mut().zip(&forces) {
+                *out = force[l];
+            }
         }
-        z = z_next;
         if position {
-            last = x;
+            last = x[len - 1];
             has_last = [true; L];
         }
     }

@@ -10,6 +10,8 @@
 
 use gms_core::{Hysteresis, Linear, MaxwellSlip, State};
 
+use crate::math::lanes;
+
 /// Fh of every lane at a candidate deflection and the linear pieces on either side of it:
 /// gms-core's [`Trial`](gms_core::Trial), one value per lane.
 #[derive(Clone, Copy, Debug)]
@@ -63,7 +65,7 @@ const SUMS: usize = 4;
 /// gms-core's `(s0 + s1) + (s2 + s3)`, per lane.
 #[inline(always)]
 fn total<const L: usize>(sums: &[[f64; L]; SUMS]) -> [f64; L] {
-    core::array::from_fn(|l| (sums[0][l] + sums[1][l]) + (sums[2][l] + sums[3][l]))
+    lanes(|l| (sums[0][l] + sums[1][l]) + (sums[2][l] + sums[3][l]))
 }
 
 /// gms-core's element clamp: `value` limited to [−limit, limit], no NaN handling.
@@ -102,7 +104,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
 
     #[inline(always)]
     fn gather<const L: usize>(&self, states: &[State<[f64; N]>]) -> [[f64; L]; N] {
-        core::array::from_fn(|i| core::array::from_fn(|l| states[l].memory[i]))
+        core::array::from_fn(|i| lanes(|l| states[l].memory[i]))
     }
 
     #[inline(always)]
@@ -228,13 +230,13 @@ impl LaneKernel for LinearKernel {
 
     #[inline(always)]
     fn force<const L: usize>(&self, _lanes: &(), z: &[f64; L]) -> [f64; L] {
-        core::array::from_fn(|l| self.sigma0 * z[l])
+        lanes(|l| self.sigma0 * z[l])
     }
 
     #[inline(always)]
     fn trial<const L: usize>(&self, _lanes: &(), z: &[f64; L]) -> TrialLanes<L> {
         TrialLanes {
-            force: core::array::from_fn(|l| self.sigma0 * z[l]),
+            force: lanes(|l| self.sigma0 * z[l]),
             slope_left: [self.sigma0; L],
             slope_right: [self.sigma0; L],
             left: [f64::NEG_INFINITY; L],
@@ -244,6 +246,6 @@ impl LaneKernel for LinearKernel {
 
     #[inline(always)]
     fn commit<const L: usize>(&self, _lanes: &mut (), z: &[f64; L]) -> [f64; L] {
-        core::array::from_fn(|l| self.sigma0 * z[l])
+        lanes(|l| self.sigma0 * z[l])
     }
 }

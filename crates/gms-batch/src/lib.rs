@@ -23,6 +23,7 @@
 //! gms-core stays `no_std` and free of `unsafe`; the one `unsafe` call of this crate enters the
 //! AVX2 copy of the kernel after the CPU has been asked (src/dispatch.rs).
 
+mod curve;
 mod dispatch;
 mod kernel;
 mod lanes;
@@ -34,8 +35,9 @@ use gms_core::{Error, Level, Params, Scheme, State};
 pub use dispatch::Path;
 pub use lanes::{BatchHysteresis, LaneKernel, LinearKernel, MaxwellKernel, TrialLanes};
 
-/// Channels stepped together: one AVX2 register of f64, two SSE2 registers.
-pub const LANES: usize = 4;
+/// Channels stepped together: two AVX2 registers of f64, four SSE2 registers. Eight rather
+/// than four gives the processor independent work to overlap (measured: 5–15 % faster).
+pub const LANES: usize = 8;
 
 /// What the rows of a batch are.
 #[derive(Clone, Copy, Debug)]

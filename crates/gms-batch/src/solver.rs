@@ -12,7 +12,7 @@
 //! the safeguarded Newton iteration runs lane by lane, a copy of the scalar one.
 
 use crate::lanes::{LaneKernel, TrialLanes};
-use crate::math::{abs_pow, Exponent, Other};
+use crate::math::{abs_pow, lanes, Exponent, Other};
 
 /// Upper bound on the Newton/bisection iterations on one piece (gms-core's `MAX_ITERATIONS`).
 const MAX_ITERATIONS: u32 = gms_core::MAX_ITERATIONS;
@@ -39,7 +39,7 @@ pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
     exponent: E,
 ) -> Option<[f64; L]> {
     let residual = |y: &[f64; L], trial: &TrialLanes<L>| -> [f64; L] {
-        core::array::from_fn(|l| {
+        lanes(|l| {
             (y[l] - step.z[l]) - step.dt_v[l]
                 + step.dt_abs_v[l] * exponent.phi(trial.force[l] * step.inverse_g[l])
         })
@@ -48,31 +48,67 @@ pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
     let mut trial = kernel.trial(memory, &y);
     let mut r = residual(&y, &trial);
     let mut root = y;
-    let mut walking: [bool; L] = core::array::from_fn(|l| r[l] != 0.0);
-    let explicit: [f64; L] = core::array::from_fn(|l| y[l] - r[l]);
-    let mut lo: [f64; L] = core::array::from_fn(|l| if r[l] < 0.0 { y[l] } else { explicit[l] });
-    let mut hi: [f64; L] = core::array::from_fn(|l| if r[l] < 0.0 { explicit[l] } else { y[l] });
+    let mut walking = [false; L];
+    for (walking, r) in walking.iter_mut().zip(&r) {
+        *walking = *r != 0.0;
+    }
+    let explicit: [f64; L] = lanes(|l| y[l] - r[l]);
+    let mut lo: [f64; L] = lanes(|l| if r[l] < 0.0 { y[l] } else { explicit[l] });
+    let mut hi: [f64; L] = lanes(|l| if r[l] < 0.0 { explicit[l] } else { y[l] });
     let mut evaluations = 1;
     while walking.iter().any(|&walking| walking) {
-        for l in 0..L {
-            let piece = Piece {
-                y: y[l],
-                r: r[l],
-                force: trial.force[l],
-                slope_left: trial.slope_left[l],
-                slope_right: trial.slope_right[l],
-                left: trial.left[l],
-                right: trial.right[l],
-                lo: lo[l],
-                hi: hi[l],
-                z: step.z[l],
-                dt_v: step.dt_v[l],
-                dt_abs_v: step.dt_abs_v[l],
-                inverse_g: step.inverse_g[l],
+        // gms-core's `solve_piece` for every lane: on the piece next to y towards the root,
+        // Fh(y + s) = Fh(y) + K·s, so u(s) = α + β·s.
+        let end: [f64; L] = lanes(|l| {
+            if r[l] < 0.0 {
+                trial.right[l].min(hi[l])
+            } else {
+                trial.left[l].max(lo[l])
+            }
+        });
+        let alpha: [f64; L] = lanes(|l| trial.force[l] * step.inverse_g[l]);
+        let beta: [f64; L] = lanes(|l| {
+            let slope = if r[l] < 0.0 {
+                trial.slope_right[l]
+            } else {
+                trial.slope_left[l]
             };
-            let (beyond, value) = piece.solve(exponent, walking[l]);
-            // Root(value); Beyond(end) at a bracket end: the root is that end; Beyond(end)
-            // inside the bracket: move there.
+            slope * step.inverse_g[l]
+        });
+        let c = &step.dt_abs_v;
+        let s_end: [f64; L] = lanes(|l| end[l] - y[l]);
+        let q: [f64; L] = lanes(|l| (y[l] - step.z[l]) - step.dt_v[l]);
+        let n = exponent.n();
+        // Lanes whose root lies beyond the piece by the Newton iteration's own test.
+        let mut past = [false; L];
+        let s: [f64; L] = if n == 1.0 {
+            lanes(|l| -r[l] / (1.0 + c[l] * beta[l]))
+        } else if n == 2.0 {
+            lanes(|l| quadratic_root(r[l], q[l], alpha[l], beta[l], c[l]))
+        } else {
+            lanes(|l| {
+                if beta[l] == 0.0 || !walking[l] {
+                    return -r[l];
+                }
+                let root =
+                    newton_on_piece(r[l], q[l], alpha[l], beta[l], c[l], n, step.z[l], s_end[l]);
+                past[l] = root.is_none();
+                root.unwrap_or(0.0)
+            })
+        };
+        for l in 0..L {
+            // Every element saturated: φ is constant and R has slope 1.
+            let s = if beta[l] == 0.0 { -r[l] } else { s[l] };
+            let rightward = r[l] < 0.0;
+            // The extended piece is monotone, so a root past the end means the root is beyond.
+            let beyond = past[l] || (rightward && s >= s_end[l]) || (!rightward && s <= s_end[l]);
+            let value = if beyond {
+                end[l]
+            } else {
+                clamp(y[l] + s, lo[l], hi[l])
+            };
+            // Root(value); Beyond(end) at a bracket end: the root is that end (to rounding);
+            // Beyond(end) inside the bracket: move there.
             let done = !beyond || value == lo[l] || value == hi[l];
             root[l] = if walking[l] && done { value } else { root[l] };
             y[l] = if walking[l] && !done { value } else { y[l] };
@@ -98,69 +134,6 @@ pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
     Some(root)
 }
 
-/// One lane on one linear piece: gms-core's `solve_piece` inputs.
-struct Piece {
-    y: f64,
-    r: f64,
-    force: f64,
-    slope_left: f64,
-    slope_right: f64,
-    left: f64,
-    right: f64,
-    lo: f64,
-    hi: f64,
-    z: f64,
-    dt_v: f64,
-    dt_abs_v: f64,
-    inverse_g: f64,
-}
-
-impl Piece {
-    /// gms-core's `solve_piece`: `(false, root)` for `OnPiece::Root(root)`, `(true, end)` for
-    /// `OnPiece::Beyond(end)`. Branch-free for n = 1 and n = 2; the Newton iteration of other n
-    /// runs only for a lane that is `walking`.
-    #[inline(always)]
-    fn solve<E: Exponent>(&self, exponent: E, walking: bool) -> (bool, f64) {
-        let rightward = self.r < 0.0;
-        let slope = if rightward {
-            self.slope_right
-        } else {
-            self.slope_left
-        };
-        let end = if rightward {
-            self.right.min(self.hi)
-        } else {
-            self.left.max(self.lo)
-        };
-        let alpha = self.force * self.inverse_g;
-        let beta = slope * self.inverse_g;
-        let c = self.dt_abs_v;
-        let s_end = end - self.y;
-        let q = (self.y - self.z) - self.dt_v;
-        let n = exponent.n();
-        let s = if n == 1.0 {
-            -self.r / (1.0 + c * beta)
-        } else if n == 2.0 {
-            quadratic_root(self.r, q, alpha, beta, c)
-        } else if beta == 0.0 || !walking {
-            -self.r
-        } else {
-            match newton_on_piece(self.r, q, alpha, beta, c, n, self.z, s_end) {
-                Some(s) => s,
-                None => return (true, end),
-            }
-        };
-        // Every element saturated: φ is constant and R has slope 1.
-        let s = if beta == 0.0 { -self.r } else { s };
-        let beyond = (rightward && s >= s_end) || (!rightward && s <= s_end);
-        if beyond {
-            (true, end)
-        } else {
-            (false, clamp(self.y + s, self.lo, self.hi))
-        }
-    }
-}
-
 /// gms-core's `quadratic_root` (root of s + q + c·φ(α + β·s) for n = 2), written without
 /// branches: the four forms of the scalar code (same side of the zero of u or across it, stiff
 /// or soft piece) are one form σ-free in shape,
@@ -183,19 +156,32 @@ pub(crate) fn quadratic_root(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f
     let sigma_c_beta = sigma * c * beta;
     // Same side: stiff A = 1/β + 2c|α|, B = 4σc, D = β; soft A = 1 + 2c|α|β, B = 4σcβ², D = 1.
     // Across: stiff R = P(s_zero), A = 1/β, B = 4σc; soft R = β·P(s_zero), A = 1, B = 4σcβ.
-    let (numerator, a, b) = match (same, stiff) {
-        (true, true) => (r, inverse + two_c_alpha, four_sigma_c),
-        (true, false) => (r, 1.0 + two_c_alpha * beta, 4.0 * (sigma_c_beta * beta)),
-        (false, true) => (p_zero, inverse, four_sigma_c),
-        (false, false) => (beta * p_zero, 1.0, 4.0 * sigma_c_beta),
+    // Selects, not branches, so that the lanes vectorize.
+    let numerator = if same {
+        r
+    } else if stiff {
+        p_zero
+    } else {
+        beta * p_zero
     };
+    let soft_same = 1.0 + two_c_alpha * beta;
+    let a = match (same, stiff) {
+        (true, true) => inverse + two_c_alpha,
+        (true, false) => soft_same,
+        (false, true) => inverse,
+        (false, false) => 1.0,
+    };
+    let soft_b = if same {
+        sigma_c_beta * beta
+    } else {
+        sigma_c_beta
+    };
+    let b = if stiff { four_sigma_c } else { 4.0 * soft_b };
     let discriminant = (a * a - b * numerator).max(0.0);
     let t = -2.0 * numerator / (a + discriminant.sqrt());
-    if same {
-        t / if stiff { beta } else { 1.0 }
-    } else {
-        (t - alpha) / beta
-    }
+    let top = if same { t } else { t - alpha };
+    let bottom = if same && !stiff { 1.0 } else { beta };
+    top / bottom
 }
 
 /// gms-core's `newton_on_piece`, operation for operation: the root of

@@ -167,8 +167,17 @@ impl Curve {
 #[allow(clippy::similar_names)] // the paper's pairs: fc and fs, fc_neg and fs_neg
 fn curve() -> impl Strategy<Value = Curve> {
     (
-        (0.2..2.0f64, 1.0..2.0f64, prop::bool::ANY, 0.3..1.5f64, 1.0..3.0f64),
-        (-4.0..-2.0f64, prop::sample::select(vec![1.0, 2.0, 0.7, 1.5])),
+        (
+            0.2..2.0f64,
+            1.0..2.0f64,
+            prop::bool::ANY,
+            0.3..1.5f64,
+            1.0..3.0f64,
+        ),
+        (
+            -4.0..-2.0f64,
+            prop::sample::select(vec![1.0, 2.0, 0.7, 1.5]),
+        ),
         prop::sample::select(vec![1.0, 2.0, 1.5, 3.0, 0.8]),
         (0.0..100.0f64, 0.0..2.0f64),
     )
@@ -379,7 +388,14 @@ fn standard<const N: usize>() -> Params<MaxwellSlip<N>> {
     let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
     let w = [2.0 / N as f64; N];
     let delta = core::array::from_fn(|i| 1e-6 * (i + 1) as f64);
-    Params::new(stribeck, 2.0, 30.0, 0.4, MaxwellSlip::new(w, delta).unwrap()).unwrap()
+    Params::new(
+        stribeck,
+        2.0,
+        30.0,
+        0.4,
+        MaxwellSlip::new(w, delta).unwrap(),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -454,7 +470,13 @@ fn bad_dt_and_empty_rows_are_gms_core_errors() {
             Some((
                 0,
                 params
-                    .simulate(&mut params.relaxed_state(), &[], dt, Scheme::Implicit, &mut [])
+                    .simulate(
+                        &mut params.relaxed_state(),
+                        &[],
+                        dt,
+                        Scheme::Implicit,
+                        &mut []
+                    )
                     .unwrap_err()
             ))
         );
