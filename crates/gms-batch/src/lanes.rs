@@ -62,6 +62,10 @@ pub trait LaneKernel: Copy {
 /// Independent partial sums of gms-core's element loops.
 const SUMS: usize = 4;
 
+/// Lanes of the trial's element loop at a time (one AVX2 register); the lane count must be a
+/// multiple of it.
+const WIDTH: usize = 4;
+
 /// gms-core's `(s0 + s1) + (s2 + s3)`, per lane.
 #[inline(always)]
 fn total<const L: usize>(sums: &[[f64; L]; SUMS]) -> [f64; L] {
@@ -135,50 +139,74 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
 
     #[inline(always)]
     fn trial<const L: usize>(&self, zeta: &[[f64; L]; N], z: &[f64; L]) -> TrialLanes<L> {
-        let mut force = [[0.0; L]; SUMS];
-        let mut slope_left = [[0.0; L]; SUMS];
-        let mut slope_right = [[0.0; L]; SUMS];
-        // The nearest breakpoints are a minimum and a maximum, the same whatever the order in
-        // which the elements are visited: one running value per lane.
-        let mut left = [f64::NEG_INFINITY; L];
-        let mut right = [f64::INFINITY; L];
-        for start in (0..N).step_by(SUMS) {
-            for sum in 0..SUMS {
-                let i = start + sum;
-                if i >= N {
-                    break;
-                }
-                let (k, limit) = (self.stiffness[i], self.delta[i]);
-                for l in 0..L {
-                    let (z, zeta) = (z[l], zeta[i][l]);
-                    let lower = zeta - limit;
-                    let upper = zeta + limit;
-                    force[sum][l] += k * clamp(z - zeta, limit);
-                    slope_right[sum][l] += if lower <= z && z < upper { k } else { 0.0 };
-                    slope_left[sum][l] += if lower < z && z <= upper { k } else { 0.0 };
-                    let above = if lower > z { lower } else { upper };
-                    let below = if upper < z { upper } else { lower };
-                    if above > z && above < right[l] {
-                        right[l] = above;
+        const { assert!(L % WIDTH == 0) };
+        let mut trial = TrialLanes {
+            force: [0.0; L],
+            slope_left: [0.0; L],
+            slope_right: [0.0; L],
+            left: [0.0; L],
+            right: [0.0; L],
+        };
+        // WIDTH lanes at a time: their 3 × 4 partial sums and two breakpoints fill the vector
+        // registers without spilling.
+        for base in (0..L).step_by(WIDTH) {
+            let mut force = [[0.0; WIDTH]; SUMS];
+            let mut slope_left = [[0.0; WIDTH]; SUMS];
+            let mut slope_right = [[0.0; WIDTH]; SUMS];
+            // The nearest breakpoints are a minimum and a maximum, the same whatever the order
+            // in which the elements are visited: one running value per lane.
+            let mut left = [f64::NEG_INFINITY; WIDTH];
+            let mut right = [f64::INFINITY; WIDTH];
+            for start in (0..N).step_by(SUMS) {
+                for sum in 0..SUMS {
+                    let i = start + sum;
+                    if i >= N {
+                        break;
                     }
-                    if below < z && below > left[l] {
-                        left[l] = below;
+                    let (k, limit) = (self.stiffness[i], self.delta[i]);
+                    for j in 0..WIDTH {
+                        let (z, zeta) = (z[base + j], zeta[i][base + j]);
+                        let lower = zeta - limit;
+                        let upper = zeta + limit;
+                        force[sum][j] += k * clamp(z - zeta, limit);
+                        slope_right[sum][j] += if lower <= z && z < upper { k } else { 0.0 };
+                        slope_left[sum][j] += if lower < z && z <= upper { k } else { 0.0 };
+                        let above = if lower > z { lower } else { upper };
+                        let below = if upper < z { upper } else { lower };
+                        // Selects, not conditional stores.
+                        right[j] = if above > z && above < right[j] {
+                            above
+                        } else {
+                            right[j]
+                        };
+                        left[j] = if below < z && below > left[j] {
+                            below
+                        } else {
+                            left[j]
+                        };
                     }
                 }
             }
+            for j in 0..WIDTH {
+                let total = |sums: &[[f64; WIDTH]; SUMS]| {
+                    (sums[0][j] + sums[1][j]) + (sums[2][j] + sums[3][j])
+                };
+                trial.force[base + j] = total(&force);
+                trial.slope_left[base + j] = total(&slope_left);
+                trial.slope_right[base + j] = total(&slope_right);
+                trial.left[base + j] = left[j];
+                trial.right[base + j] = right[j];
+            }
         }
-        TrialLanes {
-            force: total(&force),
-            slope_left: total(&slope_left),
-            slope_right: total(&slope_right),
-            left,
-            right,
-        }
+        trial
     }
 
     #[inline(always)]
     fn commit<const L: usize>(&self, zeta: &mut [[f64; L]; N], z: &[f64; L]) -> [f64; L] {
         let mut force = [[0.0; L]; SUMS];
+        // The new positions go to a new array: a select stored back where it was loaded from
+        // is compiled into a masked store, which is slow.
+        let mut moved = [[0.0; L]; N];
         for start in (0..N).step_by(SUMS) {
             for (sum, force) in force.iter_mut().enumerate() {
                 let i = start + sum;
@@ -188,7 +216,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
                         let deflection = z[l] - zeta[i][l];
                         let kept = clamp(deflection, limit);
                         // Only slipping elements move, as in gms-core.
-                        zeta[i][l] = if kept == deflection {
+                        moved[i][l] = if kept == deflection {
                             zeta[i][l]
                         } else {
                             z[l] - kept
@@ -198,6 +226,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
                 }
             }
         }
+        *zeta = moved;
         total(&force)
     }
 }
