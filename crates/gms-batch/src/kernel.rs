@@ -87,6 +87,16 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
     // exponential) is computed for a whole block in short loops whose iterations are
     // independent, then the block is stepped sample by sample, then its forces are written out
     // row by row.
+    // What the next step starts from: the trial at z (implicit) or Fh(z) (explicit), each
+    // computed by the previous step's commit in the same pass.
+    let mut first_trial = match scheme {
+        Scheme::Implicit => Some(kernel.trial::<L>(&memory, &z)),
+        Scheme::Explicit => None,
+    };
+    let mut force_at_z = match scheme {
+        Scheme::Implicit => [0.0; L],
+        Scheme::Explicit => kernel.force::<L>(&memory, &z),
+    };
     let mut x = [[0.0; L]; BLOCK];
     let mut v = [[0.0; L]; BLOCK];
     let mut g = [[0.0; L]; BLOCK];
@@ -137,10 +147,12 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
                         dt_abs_v: lanes(|l| dt * libm::fabs(v[l])),
                         inverse_g: g[t],
                     };
-                    solve::<H::Kernel, E, L>(kernel, &memory, &step, exponent).ok_or(Rejected)?
+                    let first = first_trial.ok_or(Rejected)?;
+                    solve::<H::Kernel, E, L>(kernel, &memory, &step, first, exponent)
+                        .ok_or(Rejected)?
                 }
                 Scheme::Explicit => {
-                    let force = kernel.force::<L>(&memory, &z);
+                    let force = &force_at_z;
                     let g = &g[t];
                     lanes(|l| {
                         let u = force[l] / g[l];
@@ -151,7 +163,18 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
             if !all_finite(&z_next) {
                 return Err(Rejected);
             }
-            let hysteresis = kernel.commit::<L>(&mut memory, &z_next);
+            let hysteresis = match scheme {
+                Scheme::Implicit => {
+                    let (hysteresis, next) = kernel.commit_trial::<L>(&mut memory, &z_next);
+                    first_trial = Some(next);
+                    hysteresis
+                }
+                Scheme::Explicit => {
+                    let (hysteresis, next) = kernel.commit_force::<L>(&mut memory, &z_next);
+                    force_at_z = next;
+                    hysteresis
+                }
+            };
             let force: [f64; L] =
                 lanes(|l| hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + sigma2 * v[l]);
             if !all_finite(&force) {

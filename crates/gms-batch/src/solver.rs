@@ -29,13 +29,14 @@ pub(crate) struct Step<const L: usize> {
     pub inverse_g: [f64; L],
 }
 
-/// The root of every lane's R; `None` if a lane exceeded the scalar bound on trial evaluations
+/// The root of every lane's R, starting from `first`, the trial at z; `None` if a lane exceeded the scalar bound on trial evaluations
 /// (only possible for non-finite values, which the caller hands to gms-core).
 #[inline(always)]
 pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
     kernel: &K,
     memory: &K::Lanes<L>,
     step: &Step<L>,
+    first: TrialLanes<L>,
     exponent: E,
 ) -> Option<[f64; L]> {
     let residual = |y: &[f64; L], trial: &TrialLanes<L>| -> [f64; L] {
@@ -45,7 +46,8 @@ pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
         })
     };
     let mut y = step.z;
-    let mut trial = kernel.trial(memory, &y);
+    // The trial at y = z, handed over from the previous step's commit.
+    let mut trial = first;
     let mut r = residual(&y, &trial);
     let mut root = y;
     let mut walking = [false; L];
