@@ -1,6 +1,9 @@
 //! Channels of the friction model that share one validated parameter set, whatever its number
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
+#[cfg(feature = "parallel")]
+use gms_batch::LANES;
+use gms_batch::{BatchHysteresis, Signal};
 use gms_core::{Hysteresis, Level, Params, Scheme, State};
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
@@ -72,7 +75,7 @@ struct Channels<H: Hysteresis> {
 
 impl<H> FrictionChannels for Channels<H>
 where
-    H: Hysteresis<Memory: Memory> + Send + Sync,
+    H: BatchHysteresis<Memory: Memory> + Send + Sync,
 {
     fn channels(&self) -> usize {
         self.states.len()
@@ -111,40 +114,35 @@ where
             // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
             return Ok(params.simulate(&mut params.relaxed_state(), &[], dt, scheme, &mut [])?);
         }
-        // gms-core checks dt and scans each row for finiteness before it steps: the one check.
-        let run_one = |state: &mut State<H::Memory>, input: &[f64], out: &mut [f64]| match kind {
-            Input::Velocity => params.simulate(state, input, dt, scheme, out),
-            Input::Position if level.is_flat() => {
-                params.simulate_position(state, input, dt, scheme, out)
-            }
-            Input::Position => params.simulate_position_level(state, input, dt, scheme, level, out),
+        // gms-batch steps the channels several at a time (LANES of them in SIMD lanes), and hands
+        // any group with a rejected sample to gms-core's block calls, which check dt and scan
+        // each row for finiteness before they step: the one check, and the same errors.
+        let signal = match kind {
+            Input::Velocity => Signal::Velocity,
+            Input::Position => Signal::Position(level),
+        };
+        let run = |states: &mut [State<H::Memory>], input: &[f64], out: &mut [f64]| {
+            gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
         };
         // Only the first failing channel is kept: a result per channel would be one more
         // allocation the size of the bank, and an infallible one.
         all_or_nothing(&mut self.states, |states| {
             #[cfg(feature = "parallel")]
             if states.len() > 1 {
+                // Whole groups of lanes go to the threads.
+                let block = LANES * samples;
                 return states
-                    .par_iter_mut()
-                    .zip(input.par_chunks(samples).zip(out.par_chunks_mut(samples)))
+                    .par_chunks_mut(LANES)
+                    .zip(input.par_chunks(block).zip(out.par_chunks_mut(block)))
                     .enumerate()
-                    .filter_map(|(channel, (state, (input, out)))| {
-                        run_one(state, input, out)
-                            .err()
-                            .map(|error| (channel, error))
+                    .filter_map(|(group, (states, (input, out)))| {
+                        run(states, input, out)
+                            .map(|(channel, error)| (group * LANES + channel, error))
                     })
                     .min_by_key(|(channel, _)| *channel);
             }
             // One channel needs no thread pool; without the `parallel` feature none is used.
-            states
-                .iter_mut()
-                .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
-                .enumerate()
-                .find_map(|(channel, (state, (input, out)))| {
-                    run_one(state, input, out)
-                        .err()
-                        .map(|error| (channel, error))
-                })
+            run(states, input, out)
         })
     }
 
@@ -222,7 +220,7 @@ fn boxed<H>(
     scheme: Scheme,
 ) -> Result<Box<dyn FrictionChannels>, Error>
 where
-    H: Hysteresis<Memory: Memory> + Send + Sync + 'static,
+    H: BatchHysteresis<Memory: Memory> + Send + Sync + 'static,
 {
     Ok(Box::new(Channels {
         states: states(params.relaxed_state(), channels)?,

@@ -119,3 +119,73 @@ fn empty_runs_check_dt_and_touch_nothing() {
         })
     );
 }
+
+/// The state of every channel, to compare before and after a run.
+fn friction_state(bank: &FrictionBank) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<bool>) {
+    let (b, n) = (bank.channels(), bank.elements());
+    let (mut z, mut memory, mut last, mut has_last) =
+        (vec![0.0; b], vec![0.0; b * n], vec![0.0; b], vec![false; b]);
+    bank.read_state(&mut z, &mut memory, &mut last, &mut has_last);
+    (z, memory, last, has_last)
+}
+
+/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core): the
+/// forces are those of stepping each channel alone, and a rejected sample anywhere names its
+/// channel and sample and leaves every channel as it was.
+#[test]
+fn batched_runs_match_single_steps_and_stay_all_or_nothing() {
+    let (channels, samples) = (19, 300);
+    let x: Vec<f64> = (0..channels * samples)
+        .map(|k| {
+            let (channel, t) = (k / samples, (k % samples) as f64);
+            2e-5 * (0.05 * t + channel as f64).sin() * (1.0 + 0.1 * channel as f64)
+        })
+        .collect();
+    for (scheme, kind) in [
+        (Scheme::Implicit, Input::Position),
+        (Scheme::Explicit, Input::Position),
+        (Scheme::Implicit, Input::Velocity),
+    ] {
+        let mut bank = FrictionBank::new(&set(), channels, scheme).expect("a bank");
+        let mut single = FrictionBank::new(&set(), channels, scheme).expect("a bank");
+        let mut out = vec![0.0; x.len()];
+        bank.run(&x, 1e-3, kind, &mut out).expect("finite input");
+        for channel in 0..channels {
+            for t in 0..samples {
+                let k = channel * samples + t;
+                let force = single.step(channel, x[k], 1e-3, kind).expect("a step");
+                assert_eq!(force.to_bits(), out[k].to_bits(), "{scheme:?} {kind:?} {k}");
+            }
+        }
+        assert_eq!(friction_state(&bank), friction_state(&single));
+
+        for bad in [3 * samples + 17, 9 * samples, 18 * samples + 299] {
+            let mut poisoned = x.clone();
+            poisoned[bad] = f64::NAN;
+            // A later channel, at an earlier sample: the first channel is the one named.
+            if bad + samples < poisoned.len() {
+                poisoned[bad + samples - 7] = f64::INFINITY;
+            }
+            let before = friction_state(&bank);
+            let error = bank.run(&poisoned, 1e-3, kind, &mut out).unwrap_err();
+            let field = if kind == Input::Position {
+                Field::x
+            } else {
+                Field::v
+            };
+            assert_eq!(
+                error,
+                Error::Channel(gms_core::InChannel {
+                    channel: bad / samples,
+                    error: gms_core::Error::NotFinite {
+                        field,
+                        index: bad % samples,
+                        value: f64::NAN,
+                    },
+                }),
+                "{error}"
+            );
+            assert_eq!(friction_state(&bank), before);
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! L channels stepped together through their rows of samples: gms-core's `advance` per lane.
+
+use gms_core::{Params, Scheme, State};
+
+use crate::curve::Curve;
+use crate::lanes::{BatchHysteresis, LaneKernel};
+use crate::math::{all_finite, lanes, Exponent, One, Other, Two};
+use crate::solver::{solve, Step};
+use crate::Signal;
+
+/// Samples per block (see `run_with`).
+const BLOCK: usize = 64;
+
+/// A lane rejected a sample (a non-finite input, velocity or result): the group's states are
+/// untouched and gms-core runs the group again, to report exactly what it reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Rejected;
+
+/// What one group runs on: L channels' states and their rows (each `samples` long) of the input
+/// and output.
+pub(crate) struct Group<'a, H: BatchHysteresis> {
+    pub params: &'a Params<H>,
+    pub kernel: &'a H::Kernel,
+    pub states: &'a mut [State<H::Memory>],
+    pub input: &'a [f64],
+    pub out: &'a mut [f64],
+    pub samples: usize,
+    pub dt: f64,
+    pub scheme: Scheme,
+    pub signal: Signal<'a>,
+}
+
+/// Runs the group, choosing the exponent's form once.
+#[inline(always)]
+pub(crate) fn run<H: BatchHysteresis, const L: usize>(group: Group<'_, H>) -> Result<(), Rejected> {
+    let n = group.params.n();
+    if n == 1.0 {
+        run_with::<H, One, L>(group, One)
+    } else if n == 2.0 {
+        run_with::<H, Two, L>(group, Two)
+    } else {
+        run_with::<H, Other, L>(group, Other(n))
+    }
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_lines)] // one pass over the samples, kept in one piece
+fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
+    group: Group<'_, H>,
+    exponent: E,
+) -> Result<(), Rejected> {
+    let Group {
+        params,
+        kernel,
+        states,
+        input,
+        out,
+        samples,
+        dt,
+        scheme,
+        signal,
+    } = group;
+    debug_assert!(states.len() == L && input.len() == L * samples && out.len() == input.len());
+    // gms-core scans a row for finiteness before it steps it; a row that fails is gms-core's to
+    // report.
+    if !input.iter().all(|x| x.is_finite()) {
+        return Err(Rejected);
+    }
+    let (curve, sigma1, sigma2) = (
+        Curve::new(params.stribeck()),
+        params.sigma1(),
+        params.sigma2(),
+    );
+    let level = match signal {
+        Signal::Position(level) if !level.is_flat() => Some(level),
+        _ => None,
+    };
+    let position = matches!(signal, Signal::Position(_));
+    let mut memory = kernel.gather::<L>(states);
+    let mut z: [f64; L] = lanes(|l| states[l].z);
+    let mut last: [f64; L] = lanes(|l| states[l].last_position.unwrap_or(0.0));
+    let mut has_last = [false; L];
+    for (has_last, state) in has_last.iter_mut().zip(&*states) {
+        *has_last = state.last_position.is_some();
+    }
+    // The samples go in blocks: what depends only on the input (the velocity, g(v) and its
+    // exponential) is computed for a whole block in short loops whose iterations are
+    // independent, then the block is stepped sample by sample, then its forces are written out
+    // row by row.
+    // What the next step starts from: the trial at z (implicit) or Fh(z) (explicit), each
+    // computed by the previous step's commit in the same pass.
+    let mut first_trial = match scheme {
+        Scheme::Implicit => Some(kernel.trial::<L>(&memory, &z)),
+        Scheme::Explicit => None,
+    };
+    let mut force_at_z = match scheme {
+        Scheme::Implicit => [0.0; L],
+        Scheme::Explicit => kernel.force::<L>(&memory, &z),
+    };
+    let mut x = [[0.0; L]; BLOCK];
+    let mut v = [[0.0; L]; BLOCK];
+    let mut g = [[0.0; L]; BLOCK];
+    let mut forces = [[0.0; L]; BLOCK];
+    for start in (0..samples).step_by(BLOCK) {
+        let len = BLOCK.min(samples - start);
+        for l in 0..L {
+            let row = &input[l * samples + start..l * samples + start + len];
+            for (x, &sample) in x.iter_mut().zip(row) {
+                x[l] = sample;
+            }
+        }
+        for t in 0..len {
+            v[t] = if position {
+                let previous = if t == 0 { last } else { x[t - 1] };
+                let v: [f64; L] = lanes(|l| {
+                    if has_last[l] || t > 0 {
+                        (x[t][l] - previous[l]) / dt
+                    } else {
+                        0.0
+                    }
+                });
+                if !all_finite(&v) {
+                    return Err(Rejected);
+                }
+                v
+            } else {
+                x[t]
+            };
+        }
+        for t in 0..len {
+            g[t] = match scheme {
+                // The implicit step uses 1/g(v).
+                Scheme::Implicit => {
+                    let g = curve.g(&v[t]);
+                    lanes(|l| 1.0 / g[l])
+                }
+                Scheme::Explicit => curve.g(&v[t]),
+            };
+        }
+        for t in 0..len {
+            let v = &v[t];
+            let z_next = match scheme {
+                Scheme::Implicit => {
+                    let step = Step {
+                        z,
+                        dt_v: lanes(|l| dt * v[l]),
+                        dt_abs_v: lanes(|l| dt * libm::fabs(v[l])),
+                        inverse_g: g[t],
+                    };
+                    let first = first_trial.ok_or(Rejected)?;
+                    solve::<H::Kernel, E, L>(kernel, &memory, &step, first, exponent)
+                        .ok_or(Rejected)?
+                }
+                Scheme::Explicit => {
+                    let force = &force_at_z;
+                    let g = &g[t];
+                    lanes(|l| {
+                        let u = force[l] / g[l];
+                        z[l] + dt * (v[l] - libm::fabs(v[l]) * exponent.phi(u))
+                    })
+                }
+            };
+            if !all_finite(&z_next) {
+                return Err(Rejected);
+            }
+            let hysteresis = match scheme {
+                Scheme::Implicit => {
+                    let (hysteresis, next) = kernel.commit_trial::<L>(&mut memory, &z_next);
+                    first_trial = Some(next);
+                    hysteresis
+                }
+                Scheme::Explicit => {
+                    let (hysteresis, next) = kernel.commit_force::<L>(&mut memory, &z_next);
+                    force_at_z = next;
+                    hysteresis
+                }
+            };
+            let force: [f64; L] =
+                lanes(|l| hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + sigma2 * v[l]);
+            if !all_finite(&force) {
+                return Err(Rejected);
+            }
+            forces[t] = force;
+            z = z_next;
+        }
+        if let Some(level) = level {
+            for t in 0..len {
+                for l in 0..L {
+                    forces[t][l] = level.apply(forces[t][l], x[t][l], v[t][l], sigma2);
+                }
+                if !all_finite(&forces[t]) {
+                    return Err(Rejected);
+                }
+            }
+        }
+        for l in 0..L {
+            let row = &mut out[l * samples + start..l * samples + start + len];
+            for (out, force) in row.iter_mut().zip(&forces) {
+                *out = force[l];
+            }
+        }
+        if position {
+            last = x[len - 1];
+            has_last = [true; L];
+        }
+    }
+    kernel.scatter::<L>(&memory, states);
+    for (l, state) in states.iter_mut().enumerate() {
+        state.z = z[l];
+        if position && samples > 0 {
+            state.last_position = Some(last[l]);
+        }
+    }
+    Ok(())
+}

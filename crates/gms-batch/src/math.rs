@@ -1,0 +1,207 @@
+//! gms-core's powers (its `math.rs`), and the transition exponent n as a type, so that the
+//! common exponents are decided once per call rather than in every lane of every step.
+//!
+//! `abs_pow` is a copy of gms-core's private one and must follow it: a new fast path there
+//! (another exponent kept off `pow`) changes gms-core's results by rounding, and the batch then
+//! agrees to a few ulps instead of bit for bit until the same path is added here (the tests ask
+//! for 1e-12 relative; `GMS_BATCH_BITWISE=1 cargo test -p gms-batch` asks for bit for bit).
+
+/// |x|^p for p > 0, exactly as gms-core computes it (p = 1 and p = 2 kept off `pow`).
+#[inline(always)]
+pub(crate) fn abs_pow(x: f64, p: f64) -> f64 {
+    let a = libm::fabs(x);
+    if p == 1.0 {
+        a
+    } else if p == 2.0 {
+        a * a
+    } else if a == 0.0 {
+        0.0
+    } else {
+        libm::pow(a, p)
+    }
+}
+
+/// The transition exponent n of φ(u) = sgn(u)·|u|ⁿ.
+pub(crate) trait Exponent: Copy {
+    /// φ(u), as gms-core's `copysign(abs_pow(u, n), u)`.
+    fn phi(self, u: f64) -> f64;
+    /// n itself.
+    fn n(self) -> f64;
+}
+
+/// n = 1: φ(u) = u (copysign(|u|, u) is u, NaN included).
+#[derive(Clone, Copy)]
+pub(crate) struct One;
+
+/// n = 2: φ(u) = u·|u|.
+#[derive(Clone, Copy)]
+pub(crate) struct Two;
+
+/// Any other n > 0, through `pow`.
+#[derive(Clone, Copy)]
+pub(crate) struct Other(pub f64);
+
+impl Exponent for One {
+    #[inline(always)]
+    fn phi(self, u: f64) -> f64 {
+        libm::fabs(u).copysign(u)
+    }
+    #[inline(always)]
+    fn n(self) -> f64 {
+        1.0
+    }
+}
+
+impl Exponent for Two {
+    #[inline(always)]
+    fn phi(self, u: f64) -> f64 {
+        let a = libm::fabs(u);
+        (a * a).copysign(u)
+    }
+    #[inline(always)]
+    fn n(self) -> f64 {
+        2.0
+    }
+}
+
+impl Exponent for Other {
+    #[inline(always)]
+    fn phi(self, u: f64) -> f64 {
+        abs_pow(u, self.0).copysign(u)
+    }
+    #[inline(always)]
+    fn n(self) -> f64 {
+        self.0
+    }
+}
+
+/// `[f(0), …, f(L − 1)]`, as a loop that is always inlined (`core::array::from_fn` may not be,
+/// and a call out of the AVX2 copy of the kernel would run baseline code).
+#[inline(always)]
+pub(crate) fn lanes<const L: usize>(mut f: impl FnMut(usize) -> f64) -> [f64; L] {
+    let mut values = [0.0; L];
+    for (l, value) in values.iter_mut().enumerate() {
+        *value = f(l);
+    }
+    values
+}
+
+/// Whether every lane is finite.
+#[inline(always)]
+pub(crate) fn all_finite<const L: usize>(values: &[f64; L]) -> bool {
+    // One combined test rather than a branch per lane.
+    #[allow(clippy::needless_bitwise_bool)]
+    values
+        .iter()
+        .fold(true, |all, value| all & value.is_finite())
+}
+
+// libm's `exp` (FreeBSD's e_exp.c), its constants.
+#[allow(clippy::excessive_precision)] // as libm writes it
+const LN2HI: f64 = 6.931_471_803_691_238_164_90e-1;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const LN2LO: f64 = 1.908_214_929_270_587_700_02e-10;
+#[allow(clippy::excessive_precision, clippy::approx_constant)] // as libm writes it
+const INVLN2: f64 = 1.442_695_040_888_963_387_00e0;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const P1: f64 = 1.666_666_666_666_660_190_37e-1;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const P2: f64 = -2.777_777_777_701_559_338_42e-3;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const P3: f64 = 6.613_756_321_437_934_361_17e-5;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const P4: f64 = -1.653_390_220_546_525_153_90e-6;
+#[allow(clippy::excessive_precision)] // as libm writes it
+const P5: f64 = 4.138_136_797_057_238_460_39e-8;
+
+/// 2^52 + 2^51: adding and subtracting it rounds an |x| < 2^51 to the nearest whole number.
+const ROUNDING: f64 = 6_755_399_441_055_744.0;
+
+/// x rounded towards zero, for |x| < 2^51, as f64 (what `x as i32 as f64` gives there); plain
+/// arithmetic and selects, so that it vectorizes without SSE4.1's `roundpd`.
+#[inline(always)]
+fn truncate(x: f64) -> f64 {
+    let nearest = (x + ROUNDING) - ROUNDING;
+    if x >= 0.0 {
+        if nearest > x {
+            nearest - 1.0
+        } else {
+            nearest
+        }
+    } else if nearest < x {
+        nearest + 1.0
+    } else {
+        nearest
+    }
+}
+
+/// libm branches on the high word of |x|; for x ≥ 0 "high word ≥ h" is "x ≥ the double whose
+/// high word is h and low word 0".
+const fn high_word(h: u64) -> f64 {
+    f64::from_bits(h << 32)
+}
+
+/// exp(x) of every lane, bit for bit `libm::exp`: its algorithm without branches for
+/// −708.39 ≤ x ≤ 0 (the Stribeck curve's exp(−|v/Vs|^δ)); other lanes call `libm::exp`.
+#[inline(always)]
+pub(crate) fn exp_lanes<const L: usize>(x: &[f64; L]) -> [f64; L] {
+    const LOWEST: f64 = -708.396_418_532_264_1;
+    // Short passes over the lanes, each simple enough for the compiler to vectorize.
+    #[allow(clippy::needless_bitwise_bool)] // one test for all lanes, not a branch per lane
+    let outside = x
+        .iter()
+        .fold(false, |outside, x| outside | !(LOWEST..=0.0).contains(x));
+    // x ≤ 0: libm's k = (INVLN2·x − 0.5) as i32 from 1.5·ln 2 on (high word 0x3ff0a2b2), −1
+    // from 0.5·ln 2 on (high word above 0x3fd62e42), 0 below.
+    let k: [f64; L] = lanes(|l| {
+        let magnitude = libm::fabs(x[l]);
+        let far = truncate(INVLN2 * x[l] - 0.5);
+        let near = if magnitude >= high_word(0x3fd6_2e43) {
+            -1.0
+        } else {
+            0.0
+        };
+        if magnitude >= high_word(0x3ff0_a2b2) {
+            far
+        } else {
+            near
+        }
+    });
+    let hi: [f64; L] = lanes(|l| {
+        if k[l] == 0.0 {
+            x[l]
+        } else {
+            x[l] - k[l] * LN2HI
+        }
+    });
+    let lo: [f64; L] = lanes(|l| if k[l] == 0.0 { 0.0 } else { k[l] * LN2LO });
+    let r: [f64; L] = lanes(|l| if k[l] == 0.0 { x[l] } else { hi[l] - lo[l] });
+    let c: [f64; L] = lanes(|l| {
+        let rr = r[l] * r[l];
+        r[l] - rr * (P1 + rr * (P2 + rr * (P3 + rr * (P4 + rr * P5))))
+    });
+    let y: [f64; L] = lanes(|l| 1.0 + (r[l] * c[l] / (2.0 - c[l]) - lo[l] + hi[l]));
+    // scalbn(y, k) for −1022 ≤ k ≤ 0: one multiplication by 2^k, whose exponent field k + 1023
+    // is the low bits of k + 1023 + 2^52.
+    let scale: [f64; L] =
+        lanes(|l| f64::from_bits((k[l] + (1023.0 + 4_503_599_627_370_496.0)).to_bits() << 52));
+    // |x| ≤ 2^-28 (high word at most 0x3e300000): libm returns 1 + x.
+    let values: [f64; L] = lanes(|l| {
+        let scaled = if k[l] == 0.0 { y[l] } else { y[l] * scale[l] };
+        if libm::fabs(x[l]) >= high_word(0x3e30_0001) {
+            scaled
+        } else {
+            1.0 + x[l]
+        }
+    });
+    if outside {
+        return lanes(|l| {
+            if (LOWEST..=0.0).contains(&x[l]) {
+                values[l]
+            } else {
+                libm::exp(x[l])
+            }
+        });
+    }
+    values
+}
