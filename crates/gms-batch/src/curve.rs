@@ -1,9 +1,9 @@
 //! gms-core's Stribeck curve g(v) for L lanes, operation for operation (its `stribeck.rs`),
 //! with libm's `exp` done for all lanes at once.
 
-use gms_core::Stribeck;
+use gms_core::{Power, Stribeck};
 
-use crate::math::{abs_pow, exp_lanes, lanes};
+use crate::math::{exp_lanes, lanes};
 
 /// The curve's values as gms-core holds them, the threshold above which the exponential is
 /// skipped included.
@@ -14,17 +14,9 @@ pub(crate) struct Curve {
     fc_neg: f64,
     fs_neg: f64,
     vs: f64,
-    delta: f64,
+    delta: Power,
     negligible: f64,
     negligible_neg: f64,
-}
-
-/// gms-core's `negligible_above`: beyond this |v/Vs|^δ, g rounds to Fc.
-fn negligible_above(fc: f64, fs: f64) -> f64 {
-    if fs == fc {
-        return -1.0;
-    }
-    libm::log((fs - fc) / fc) + 54.0 * core::f64::consts::LN_2 + 1.0
 }
 
 impl Curve {
@@ -35,9 +27,9 @@ impl Curve {
             fc_neg: stribeck.fc_neg(),
             fs_neg: stribeck.fs_neg(),
             vs: stribeck.vs(),
-            delta: stribeck.delta(),
-            negligible: negligible_above(stribeck.fc(), stribeck.fs()),
-            negligible_neg: negligible_above(stribeck.fc_neg(), stribeck.fs_neg()),
+            delta: stribeck.delta_power(),
+            negligible: stribeck.negligible_above(1.0),
+            negligible_neg: stribeck.negligible_above(-1.0),
         }
     }
 
@@ -45,12 +37,12 @@ impl Curve {
     #[inline(always)]
     pub(crate) fn g<const L: usize>(&self, v: &[f64; L]) -> [f64; L] {
         let ratio: [f64; L] = lanes(|l| v[l] / self.vs);
-        let exponent: [f64; L] = if self.delta == 1.0 {
-            lanes(|l| libm::fabs(ratio[l]))
-        } else if self.delta == 2.0 {
-            lanes(|l| libm::fabs(ratio[l]) * libm::fabs(ratio[l]))
-        } else {
-            lanes(|l| abs_pow(ratio[l], self.delta))
+        // The usual shapes as their own loops, which vectorize; the class is the same for
+        // every lane.
+        let exponent: [f64; L] = match self.delta {
+            Power::One => lanes(|l| libm::fabs(ratio[l])),
+            Power::Two => lanes(|l| libm::fabs(ratio[l]) * libm::fabs(ratio[l])),
+            delta => lanes(|l| delta.abs(ratio[l])),
         };
         let negative = |l: usize| v[l] < 0.0;
         let fc: [f64; L] = lanes(|l| if negative(l) { self.fc_neg } else { self.fc });

@@ -39,7 +39,7 @@ pub(crate) fn run<H: BatchHysteresis, const L: usize>(group: Group<'_, H>) -> Re
     } else if n == 2.0 {
         run_with::<H, Two, L>(group, Two)
     } else {
-        run_with::<H, Other, L>(group, Other(n))
+        run_with::<H, Other, L>(group, Other::new(n))
     }
 }
 

@@ -1,32 +1,23 @@
-//! gms-core's powers (its `math.rs`), and the transition exponent n as a type, so that the
-//! common exponents are decided once per call rather than in every lane of every step.
-//!
-//! `abs_pow` is a copy of gms-core's private one and must follow it: a new fast path there
-//! (another exponent kept off `pow`) changes gms-core's results by rounding, and the batch then
-//! agrees to a few ulps instead of bit for bit until the same path is added here (the tests ask
-//! for 1e-12 relative; `GMS_BATCH_BITWISE=1 cargo test -p gms-batch` asks for bit for bit).
+//! The transition exponent n as a type, so that the common exponents are decided once per call
+//! rather than in every lane of every step; other exponents raise to gms-core's own [`Power`],
+//! so every lane rounds exactly as the single-channel step does.
 
-/// |x|^p for p > 0, exactly as gms-core computes it (p = 1 and p = 2 kept off `pow`).
-#[inline(always)]
-pub(crate) fn abs_pow(x: f64, p: f64) -> f64 {
-    let a = libm::fabs(x);
-    if p == 1.0 {
-        a
-    } else if p == 2.0 {
-        a * a
-    } else if a == 0.0 {
-        0.0
-    } else {
-        libm::pow(a, p)
-    }
-}
+use gms_core::Power;
 
 /// The transition exponent n of φ(u) = sgn(u)·|u|ⁿ.
 pub(crate) trait Exponent: Copy {
-    /// φ(u), as gms-core's `copysign(abs_pow(u, n), u)`.
+    /// φ(u), as gms-core's `copysign(|u|ⁿ, u)`.
     fn phi(self, u: f64) -> f64;
     /// n itself.
     fn n(self) -> f64;
+    /// n, classified as gms-core classifies it.
+    fn power(self) -> Power {
+        Power::new(self.n())
+    }
+    /// n − 1, classified (the exponent of dφ/du in the Newton iteration).
+    fn power_less_one(self) -> Power {
+        Power::new(self.n() - 1.0)
+    }
 }
 
 /// n = 1: φ(u) = u (copysign(|u|, u) is u, NaN included).
@@ -37,9 +28,21 @@ pub(crate) struct One;
 #[derive(Clone, Copy)]
 pub(crate) struct Two;
 
-/// Any other n > 0, through `pow`.
+/// Any other n > 0: n and n − 1 classified by gms-core (products, a square root, or `pow`).
 #[derive(Clone, Copy)]
-pub(crate) struct Other(pub f64);
+pub(crate) struct Other {
+    pub n: Power,
+    pub n_less_one: Power,
+}
+
+impl Other {
+    pub(crate) fn new(n: f64) -> Self {
+        Self {
+            n: Power::new(n),
+            n_less_one: Power::new(n - 1.0),
+        }
+    }
+}
 
 impl Exponent for One {
     #[inline(always)]
@@ -67,11 +70,17 @@ impl Exponent for Two {
 impl Exponent for Other {
     #[inline(always)]
     fn phi(self, u: f64) -> f64 {
-        abs_pow(u, self.0).copysign(u)
+        self.n.abs(u).copysign(u)
     }
     #[inline(always)]
     fn n(self) -> f64 {
-        self.0
+        self.n.exponent()
+    }
+    fn power(self) -> Power {
+        self.n
+    }
+    fn power_less_one(self) -> Power {
+        self.n_less_one
     }
 }
 

@@ -9,13 +9,12 @@
 //! The piece's root is computed for every lane with selects: for n = 1 and n = 2 in closed
 //! form, written so that each lane's arithmetic is that of the scalar solver operation for
 //! operation (the test `quadratic_matches_the_scalar_form` checks it bit for bit); for other n
-//! the safeguarded Newton iteration runs lane by lane, a copy of the scalar one.
+//! each lane calls gms-core's own safeguarded Newton iteration ([`PieceEquation::newton_root`]).
 
 use crate::lanes::{LaneKernel, TrialLanes};
-use crate::math::{abs_pow, lanes, Exponent, Other};
+use gms_core::PieceEquation;
 
-/// Upper bound on the Newton/bisection iterations on one piece (gms-core's `MAX_ITERATIONS`).
-const MAX_ITERATIONS: u32 = gms_core::MAX_ITERATIONS;
+use crate::math::{lanes, Exponent};
 
 /// The lane-wise inputs of one implicit step: R(y) = (y − z) − dt·v + dt·|v|·φ(Fh(y)/g(v)).
 pub(crate) struct Step<const L: usize> {
@@ -92,8 +91,19 @@ pub(crate) fn solve<K: LaneKernel, E: Exponent, const L: usize>(
                 if beta[l] == 0.0 || !walking[l] {
                     return -r[l];
                 }
-                let root =
-                    newton_on_piece(r[l], q[l], alpha[l], beta[l], c[l], n, step.z[l], s_end[l]);
+                let equation = PieceEquation {
+                    r: r[l],
+                    q: q[l],
+                    alpha: alpha[l],
+                    beta: beta[l],
+                    c: c[l],
+                };
+                let root = equation.newton_root(
+                    exponent.power(),
+                    exponent.power_less_one(),
+                    step.z[l],
+                    s_end[l],
+                );
                 past[l] = root.is_none();
                 root.unwrap_or(0.0)
             })
@@ -186,77 +196,6 @@ pub(crate) fn quadratic_root(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f
     top / bottom
 }
 
-/// gms-core's `newton_on_piece`, operation for operation: the root of
-/// P(s) = s + q + c·φ(α + β·s) between 0 and `s_end`, or `None` if it lies beyond.
-#[allow(clippy::too_many_arguments)]
-fn newton_on_piece(
-    r: f64,
-    q: f64,
-    alpha: f64,
-    beta: f64,
-    c: f64,
-    n: f64,
-    z: f64,
-    s_end: f64,
-) -> Option<f64> {
-    let p = |s: f64| (s + q) + c * Other(n).phi(alpha + beta * s);
-    let p_end = p(s_end);
-    if (r < 0.0 && p_end < 0.0) || (r > 0.0 && p_end > 0.0) {
-        return None;
-    }
-    let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
-    let tolerance = 4.0 * f64::EPSILON * (libm::fabs(z) + libm::fabs(s_end));
-    let (mut s, mut value) = (0.0, r);
-    let mut checkpoint = b - a;
-    for iteration in 0..MAX_ITERATIONS {
-        if b - a <= tolerance {
-            break;
-        }
-        let u = alpha + beta * s;
-        let slope = if u == 0.0 {
-            if n > 1.0 {
-                1.0
-            } else {
-                f64::INFINITY
-            }
-        } else {
-            1.0 + c * beta * n * abs_pow(u, n) / libm::fabs(u)
-        };
-        let newton = s - value / slope;
-        if slope.is_finite() && libm::fabs(newton - s) <= tolerance {
-            let (below, above) = (newton - tolerance, newton + tolerance);
-            let (p_below, p_above) = (p(below), p(above));
-            if p_below <= 0.0 && p_above >= 0.0 {
-                return Some(clamp(newton, a, b));
-            }
-            if p_below > 0.0 {
-                b = b.min(below);
-            } else {
-                a = a.max(above);
-            }
-        }
-        let stalled = iteration % 2 == 1 && b - a > 0.5 * checkpoint;
-        if iteration % 2 == 1 {
-            checkpoint = b - a;
-        }
-        s = if slope.is_finite() && newton > a && newton < b && !stalled {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-        value = p(s);
-        if value == 0.0 {
-            return Some(s);
-        }
-        if value < 0.0 {
-            a = s;
-        } else {
-            b = s;
-        }
-    }
-    Some(0.5 * (a + b))
-}
-
 /// gms-core's solver clamp: a NaN passes through.
 #[inline(always)]
 fn clamp(value: f64, lo: f64, hi: f64) -> f64 {
@@ -274,35 +213,16 @@ mod tests {
     use super::quadratic_root;
     use proptest::prelude::*;
 
-    /// gms-core's `quadratic_root`, verbatim.
+    /// gms-core's own closed form.
     fn scalar(r: f64, q: f64, alpha: f64, beta: f64, c: f64) -> f64 {
-        let s_zero = -alpha / beta;
-        let p_zero = s_zero + q;
-        let sigma = if p_zero <= 0.0 { 1.0 } else { -1.0 };
-        let stiff = beta > 1.0;
-        if sigma * alpha >= 0.0 {
-            if stiff {
-                let a1 = 1.0 / beta + 2.0 * c * libm::fabs(alpha);
-                let discriminant = (a1 * a1 - 4.0 * sigma * c * r).max(0.0);
-                return -2.0 * r / (a1 + libm::sqrt(discriminant)) / beta;
-            }
-            let a2 = sigma * c * beta * beta;
-            let a1 = 1.0 + 2.0 * c * libm::fabs(alpha) * beta;
-            let discriminant = (a1 * a1 - 4.0 * a2 * r).max(0.0);
-            -2.0 * r / (a1 + libm::sqrt(discriminant))
-        } else {
-            let w = if stiff {
-                let inverse = 1.0 / beta;
-                -2.0 * p_zero
-                    / (inverse
-                        + libm::sqrt((inverse * inverse - 4.0 * sigma * c * p_zero).max(0.0)))
-            } else {
-                let a2 = sigma * c * beta;
-                let a0 = beta * p_zero;
-                -2.0 * a0 / (1.0 + libm::sqrt((1.0 - 4.0 * a2 * a0).max(0.0)))
-            };
-            (w - alpha) / beta
+        gms_core::PieceEquation {
+            r,
+            q,
+            alpha,
+            beta,
+            c,
         }
+        .quadratic_root()
     }
 
     fn magnitude() -> impl Strategy<Value = f64> {

@@ -47,9 +47,10 @@ pub use error::{Error, Field, InChannel, Shown};
 pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Piece, Trial, MIN_DELTA_RATIO};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
 pub use level::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
+pub use math::Power;
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
-pub use solver::{Solution, MAX_ITERATIONS};
+pub use solver::{PieceEquation, Solution, MAX_ITERATIONS};
 pub use stribeck::Stribeck;
 
 // The README's Rust snippets run as doctests of this crate, so the README cannot drift from the API.

@@ -21,15 +21,18 @@ pub(crate) const MAX_INTEGER: u32 = 8;
 const MAX_ULPS: u64 = 6;
 
 /// An exponent p > 0, sorted once into the class that decides how |x|^p is computed.
+///
+/// Public so that code stepping the model outside this crate (gms-batch's lanes) raises to the
+/// same powers with the same rounding.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Power {
+pub enum Power {
     /// p = 1: |x|.
     One,
     /// p = 2: x².
     Two,
-    /// p = k, an integer 3 ≤ k ≤ [`MAX_INTEGER`]: repeated squaring.
+    /// p = k, an integer 3 ≤ k ≤ 8: repeated squaring (larger integers go to `pow`).
     Integer(u32),
-    /// p = k + ½ with 0 ≤ k ≤ [`MAX_INTEGER`]: |x|^k·√|x|.
+    /// p = k + ½ with 0 ≤ k ≤ 8: |x|^k·√|x|.
     HalfInteger(u32),
     /// Any other p, through `libm::pow`.
     General(f64),
@@ -38,7 +41,7 @@ pub(crate) enum Power {
 impl Power {
     /// Classifies `p`. Any value is accepted (a NaN or a negative exponent becomes
     /// [`Power::General`]); the parameter checks decide which exponents a model may have.
-    pub(crate) fn new(p: f64) -> Self {
+    pub fn new(p: f64) -> Self {
         if p == 1.0 {
             return Self::One;
         }
@@ -61,7 +64,7 @@ impl Power {
     }
 
     /// The exponent p.
-    pub(crate) fn exponent(self) -> f64 {
+    pub fn exponent(self) -> f64 {
         match self {
             Self::One => 1.0,
             Self::Two => 2.0,
@@ -73,13 +76,13 @@ impl Power {
 
     /// |x|^p.
     #[inline]
-    pub(crate) fn abs(self, x: f64) -> f64 {
+    pub fn abs(self, x: f64) -> f64 {
         self.of(libm::fabs(x))
     }
 
     /// a^p for a magnitude a ≥ 0 (or NaN, which propagates).
     #[inline]
-    pub(crate) fn of(self, a: f64) -> f64 {
+    pub fn of(self, a: f64) -> f64 {
         match self {
             Self::One => a,
             Self::Two => a * a,

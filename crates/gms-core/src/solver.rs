@@ -165,7 +165,15 @@ impl<H: Hysteresis> Residual<'_, H> {
             match self.n {
                 Power::One => -r / (1.0 + c * beta),
                 Power::Two => quadratic_root(r, q, alpha, beta, c),
-                _ => match self.newton_on_piece(r, q, alpha, beta, s_end) {
+                _ => match (PieceEquation {
+                    r,
+                    q,
+                    alpha,
+                    beta,
+                    c,
+                })
+                .newton_root(self.n, self.n_less_one, self.z, s_end)
+                {
                     Some(s) => s,
                     None => return OnPiece::Beyond(end),
                 },
@@ -177,16 +185,53 @@ impl<H: Hysteresis> Residual<'_, H> {
         }
         OnPiece::Root(clamp(y + s, lo, hi))
     }
+}
 
-    /// Root of P(s) = s + q + c·φ(α + β·s) (P(0) = r) between 0 and `s_end`, for any n > 0;
-    /// `None` if P keeps the sign of r over the whole interval (the root lies beyond the piece).
+/// The equation of the implicit step on one linear piece of Fh next to the current point y:
+/// P(s) = R(y + s) = s + q + c·φ(α + β·s), with P(0) = r ≠ 0.
+///
+/// The walk of [`Params::solve_implicit`](crate::Params::solve_implicit) builds one per piece;
+/// it is public so that a kernel stepping several channels at once (gms-batch) solves each
+/// channel's piece with this very arithmetic, and so agrees with the single-channel step bit
+/// for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PieceEquation {
+    /// P(0) = R(y), nonzero.
+    pub r: f64,
+    /// (y − z) − dt·v: written apart from r − c·φ(α), which cancels when c·φ(α) is huge.
+    pub q: f64,
+    /// Fh(y)/g(v).
+    pub alpha: f64,
+    /// The piece's slope dFh/dy divided by g(v), ≥ 0.
+    pub beta: f64,
+    /// dt·|v| ≥ 0.
+    pub c: f64,
+}
+
+impl PieceEquation {
+    /// The root for n = 2 (φ(u) = u·|u|) and β > 0, in closed form.
+    #[inline]
+    pub fn quadratic_root(&self) -> f64 {
+        quadratic_root(self.r, self.q, self.alpha, self.beta, self.c)
+    }
+
+    /// The root between 0 and `s_end` for any n > 0, given as its class `n` and n − 1 as
+    /// `n_less_one` (`Power::new(n - 1.0)`), with z the deflection at step start (it sets the
+    /// tolerance); `None` if P keeps the sign of r over the whole interval (the root lies
+    /// beyond the piece).
     ///
     /// Newton inside a bracket, with two safeguards: a Newton step that leaves the bracket is
     /// replaced by a bisection, and so is every second step when the bracket has not halved over
     /// the last two (far from the root, Newton on |u|ⁿ gains only a factor (n − 1)/n per step).
     /// The bracket therefore halves at least every two steps, which bounds the iterations.
-    fn newton_on_piece(&self, r: f64, q: f64, alpha: f64, beta: f64, s_end: f64) -> Option<f64> {
-        let (n, c) = (self.n, self.dt_abs_v);
+    pub fn newton_root(&self, n: Power, n_less_one: Power, z: f64, s_end: f64) -> Option<f64> {
+        let Self {
+            r,
+            q,
+            alpha,
+            beta,
+            c,
+        } = *self;
         let n_value = n.exponent();
         let p = |s: f64| (s + q) + c * phi(alpha + beta * s, n);
         // P and its slope at s from one power: |u|ⁿ⁻¹ gives both dφ/du = n·|u|ⁿ⁻¹ and
@@ -199,7 +244,7 @@ impl<H: Hysteresis> Residual<'_, H> {
                 return ((s + q) + c * u, slope);
             }
             let magnitude = libm::fabs(u);
-            let power = self.n_less_one.of(magnitude);
+            let power = n_less_one.of(magnitude);
             let phi = libm::copysign(power * magnitude, u);
             ((s + q) + c * phi, 1.0 + c * beta * n_value * power)
         };
@@ -209,7 +254,7 @@ impl<H: Hysteresis> Residual<'_, H> {
         }
         // Bracket [a, b] in s with P(a) ≤ 0 ≤ P(b) (an end is 0 only at s_end).
         let (mut a, mut b) = if r < 0.0 { (0.0, s_end) } else { (s_end, 0.0) };
-        let tolerance = 4.0 * f64::EPSILON * (libm::fabs(self.z) + libm::fabs(s_end));
+        let tolerance = 4.0 * f64::EPSILON * (libm::fabs(z) + libm::fabs(s_end));
         // P(0) = r is known; its slope is not.
         let (mut s, mut value, mut slope) = (0.0, r, value_and_slope(0.0).1);
         let mut checkpoint = b - a;

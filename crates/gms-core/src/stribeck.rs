@@ -98,6 +98,22 @@ impl Stribeck {
         self.fs.max(self.fs_neg)
     }
 
+    /// The exponent δ, classified ([`Power`]): how g raises |v/Vs|.
+    pub fn delta_power(&self) -> Power {
+        self.delta
+    }
+
+    /// The value of |v/Vs|^δ above which g(v) is exactly the Coulomb level for the direction
+    /// of `v` (the Stribeck term is below half an ulp of it), so that g skips the exponential.
+    /// Negative when Fs = Fc: g is then Fc everywhere.
+    pub fn negligible_above(&self, v: f64) -> f64 {
+        if v < 0.0 {
+            self.negligible_neg
+        } else {
+            self.negligible
+        }
+    }
+
     /// g(v) > 0, the magnitude of the steady sliding friction at velocity v.
     #[inline]
     pub fn g(&self, v: f64) -> f64 {
