@@ -49,8 +49,12 @@ SIGMA0, SIGMA1_LUGRE = 1e5, 316.0
 SIGMA1, SIGMA2 = 30.0, 0.4
 W = np.full(10, 0.2)
 DELTA_I = 1e-6 * np.arange(1, 11, dtype=np.float64)
-# Agreement demanded of the peer: the implicit roots are found by different arithmetic orders.
-AGREEMENT = 1e-9
+# Agreement demanded of a peer, relative to the largest force. The peers sum the elements in one
+# running sum, the library in four partial sums, so forces differ by ulps. The implicit step
+# damps those differences (measured: below 1e-15); the explicit step at these parameters is past
+# its stability limit (dt·|v|·W/(Δ·g) reaches about 20: the elements chatter) and amplifies them,
+# to 3e-9 over 10 000 samples.
+AGREEMENT = {"implicit": 1e-12, "explicit": 1e-6}
 
 LUGRE = leuven_rt.Params(
     Fc=FC, Fs=FS, Vs=VS, delta=DELTA, n=1.0, sigma0=SIGMA0, sigma1=SIGMA1_LUGRE, sigma2=SIGMA2
@@ -275,7 +279,7 @@ def main() -> None:
         case.peer(v, out)
         scale = float(np.max(np.abs(expected)))
         agreement = float(np.max(np.abs(out - expected))) / scale
-        if not agreement <= AGREEMENT:
+        if not agreement <= AGREEMENT[case.scheme]:
             failures.append(f"{case.name}: numba and leuven-rt differ by {agreement:.1e} (relative)")
         library_run = lambda c=case: leuven_rt.simulate(c.params, v, DT, c.scheme)  # noqa: E731
         peer_run = lambda c=case, out=out: c.peer(v, out)  # noqa: E731
