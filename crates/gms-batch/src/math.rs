@@ -126,22 +126,25 @@ const P5: f64 = 4.138_136_797_057_238_460_39e-8;
 /// 2^52 + 2^51: adding and subtracting it rounds an |x| < 2^51 to the nearest whole number.
 const ROUNDING: f64 = 6_755_399_441_055_744.0;
 
+/// `a` where `mask` holds, else `b`: arithmetic on the bits, which the compiler keeps as a
+/// vector blend instead of turning a lane's choice into a branch.
+#[inline(always)]
+fn select(mask: bool, a: f64, b: f64) -> f64 {
+    let mask = u64::from(mask).wrapping_neg();
+    f64::from_bits((mask & a.to_bits()) | (!mask & b.to_bits()))
+}
+
 /// x rounded towards zero, for |x| < 2^51, as f64 (what `x as i32 as f64` gives there); plain
-/// arithmetic and selects, so that it vectorizes without SSE4.1's `roundpd`.
+/// arithmetic and masks, so that it vectorizes without SSE4.1's `roundpd`: the nearest whole
+/// number, less one towards x's sign where rounding went past x.
 #[inline(always)]
 fn truncate(x: f64) -> f64 {
+    const SIGN: u64 = 1 << 63;
     let nearest = (x + ROUNDING) - ROUNDING;
-    if x >= 0.0 {
-        if nearest > x {
-            nearest - 1.0
-        } else {
-            nearest
-        }
-    } else if nearest < x {
-        nearest + 1.0
-    } else {
-        nearest
-    }
+    let past = u64::from(libm::fabs(nearest) > libm::fabs(x)).wrapping_neg();
+    // ±1 with x's sign where rounding went past x, +0 elsewhere.
+    let step = f64::from_bits(past & (1.0f64.to_bits() | (x.to_bits() & SIGN)));
+    nearest - step
 }
 
 /// libm branches on the high word of |x|; for x ≥ 0 "high word ≥ h" is "x ≥ the double whose
@@ -162,29 +165,13 @@ pub(crate) fn exp_lanes<const L: usize>(x: &[f64; L]) -> [f64; L] {
         .fold(false, |outside, x| outside | !(LOWEST..=0.0).contains(x));
     // x ≤ 0: libm's k = (INVLN2·x − 0.5) as i32 from 1.5·ln 2 on (high word 0x3ff0a2b2), −1
     // from 0.5·ln 2 on (high word above 0x3fd62e42), 0 below.
-    let k: [f64; L] = lanes(|l| {
-        let magnitude = libm::fabs(x[l]);
-        let far = truncate(INVLN2 * x[l] - 0.5);
-        let near = if magnitude >= high_word(0x3fd6_2e43) {
-            -1.0
-        } else {
-            0.0
-        };
-        if magnitude >= high_word(0x3ff0_a2b2) {
-            far
-        } else {
-            near
-        }
-    });
-    let hi: [f64; L] = lanes(|l| {
-        if k[l] == 0.0 {
-            x[l]
-        } else {
-            x[l] - k[l] * LN2HI
-        }
-    });
-    let lo: [f64; L] = lanes(|l| if k[l] == 0.0 { 0.0 } else { k[l] * LN2LO });
-    let r: [f64; L] = lanes(|l| if k[l] == 0.0 { x[l] } else { hi[l] - lo[l] });
+    let magnitude: [f64; L] = lanes(|l| libm::fabs(x[l]));
+    let far: [f64; L] = lanes(|l| truncate(INVLN2 * x[l] - 0.5));
+    let near: [f64; L] = lanes(|l| select(magnitude[l] >= high_word(0x3fd6_2e43), -1.0, 0.0));
+    let k: [f64; L] = lanes(|l| select(magnitude[l] >= high_word(0x3ff0_a2b2), far[l], near[l]));
+    let hi: [f64; L] = lanes(|l| select(k[l] == 0.0, x[l], x[l] - k[l] * LN2HI));
+    let lo: [f64; L] = lanes(|l| select(k[l] == 0.0, 0.0, k[l] * LN2LO));
+    let r: [f64; L] = lanes(|l| select(k[l] == 0.0, x[l], hi[l] - lo[l]));
     let c: [f64; L] = lanes(|l| {
         let rr = r[l] * r[l];
         r[l] - rr * (P1 + rr * (P2 + rr * (P3 + rr * (P4 + rr * P5))))
@@ -195,13 +182,13 @@ pub(crate) fn exp_lanes<const L: usize>(x: &[f64; L]) -> [f64; L] {
     let scale: [f64; L] =
         lanes(|l| f64::from_bits((k[l] + (1023.0 + 4_503_599_627_370_496.0)).to_bits() << 52));
     // |x| ≤ 2^-28 (high word at most 0x3e300000): libm returns 1 + x.
+    let scaled: [f64; L] = lanes(|l| select(k[l] == 0.0, y[l], y[l] * scale[l]));
     let values: [f64; L] = lanes(|l| {
-        let scaled = if k[l] == 0.0 { y[l] } else { y[l] * scale[l] };
-        if libm::fabs(x[l]) >= high_word(0x3e30_0001) {
-            scaled
-        } else {
-            1.0 + x[l]
-        }
+        select(
+            magnitude[l] >= high_word(0x3e30_0001),
+            scaled[l],
+            1.0 + x[l],
+        )
     });
     if outside {
         return lanes(|l| {
@@ -213,4 +200,22 @@ pub(crate) fn exp_lanes<const L: usize>(x: &[f64; L]) -> [f64; L] {
         });
     }
     values
+}
+
+#[cfg(test)]
+mod tests {
+    use super::truncate;
+
+    #[test]
+    fn truncate_is_the_integer_conversion() {
+        let mut x: f64 = -1100.0;
+        while x <= 1100.0 {
+            for x in [x, x.floor(), x.floor() + 0.5, x.ceil() - 0.5] {
+                #[allow(clippy::cast_possible_truncation)] // |x| ≤ 1100
+                let expected = f64::from(x as i32);
+                assert_eq!(truncate(x), expected, "truncate({x:e})");
+            }
+            x += 0.013_7;
+        }
+    }
 }
