@@ -105,7 +105,9 @@ pub fn run_on<H: BatchHysteresis>(
         input.len() == states.len() * samples && out.len() == input.len(),
         "input and output must be channels × samples"
     );
-    if samples == 0 || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
+    // No channels: `samples` is then not tied to the input's length (0 × anything), and
+    // LANES × samples could overflow; gms-core's calls still check dt.
+    if states.is_empty() || samples == 0 || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
         // Nothing to step, or a dt gms-core refuses: its own calls say so.
         return run_scalar(params, states, input, samples, dt, scheme, signal, out);
     }

@@ -547,3 +547,28 @@ fn bit_for_bit_on_the_benchmark_case() {
         }
     }
 }
+
+/// No channels: whatever `samples` says (0 × anything is the empty input), nothing is stepped
+/// and nothing overflows; the largest count once made LANES × samples wrap.
+#[test]
+fn no_channels_with_any_sample_count() {
+    let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
+    let bank = MaxwellSlip::new([1.0, 1.0], [1e-6, 2e-6]).expect("valid bank");
+    let params = Params::new(stribeck, 2.0, 30.0, 0.4, bank).expect("valid parameters");
+    for path in paths() {
+        for samples in [0, 1, 7, usize::MAX] {
+            let result = run_on(
+                path,
+                &params,
+                &mut [],
+                &[],
+                samples,
+                1e-3,
+                Scheme::Implicit,
+                Signal::Velocity,
+                &mut [],
+            );
+            assert!(result.is_none(), "{samples} samples on {path:?}");
+        }
+    }
+}

@@ -100,6 +100,15 @@ impl<H: Hysteresis> Residual<'_, H> {
         if r == 0.0 {
             return Solution { z: y, iterations };
         }
+        // A NaN in the memory (a state written from outside without `check_state`) makes Fh
+        // and R NaN; no comparison then holds, and a bisection would still return a finite
+        // point. Returning NaN lets the step refuse it before anything is committed.
+        if r.is_nan() {
+            return Solution {
+                z: f64::NAN,
+                iterations,
+            };
+        }
         let explicit = y - r;
         let (mut lo, mut hi) = if r < 0.0 {
             (y, explicit)
@@ -245,6 +254,11 @@ impl PieceEquation {
             }
             let magnitude = libm::fabs(u);
             let power = n_less_one.of(magnitude);
+            if !power.is_finite() {
+                // n < 1 at a subnormal |u|: |u|ⁿ⁻¹ overflows while |u|ⁿ is tiny. φ from its
+                // own power, and no Newton step (the slope is infinite).
+                return ((s + q) + c * phi(u, n), f64::INFINITY);
+            }
             let phi = libm::copysign(power * magnitude, u);
             ((s + q) + c * phi, 1.0 + c * beta * n_value * power)
         };

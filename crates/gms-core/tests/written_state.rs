@@ -112,3 +112,33 @@ fn non_finite_states_are_refused() {
     state.z = 1e3;
     assert_eq!(lugre.check_state(&state), Ok(()));
 }
+
+/// A NaN written into the memory, skipping `check_state`, is refused by the step with the state
+/// untouched, for every exponent and scheme. With the in-place commit, only a non-finite z⁺ stops
+/// such a memory before it is written: the implicit solver must not bisect a NaN residual to a
+/// finite point (it used to, for exponents solved by Newton's iteration).
+#[test]
+fn a_nan_in_the_memory_is_refused_and_nothing_is_written() {
+    for n in [1.0, 2.0, 1.5, 3.0, 0.7] {
+        let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
+        let elements = MaxwellSlip::new([1.0, 1.0, 1.0], [1e-6, 2e-6, 4e-6]).expect("valid bank");
+        let params = Params::new(stribeck, n, 30.0, 0.4, elements).expect("valid parameters");
+        for scheme in [Scheme::Implicit, Scheme::Explicit] {
+            for v in [1e-3, -2e-4, 0.0] {
+                let mut state = params.relaxed_state();
+                state.memory[1] = f64::NAN;
+                let before = state;
+                let result = params.step(&mut state, v, 1e-3, scheme);
+                assert_eq!(
+                    result,
+                    Err(Error::Diverged { index: 0 }),
+                    "n = {n}, {scheme:?}, v = {v}"
+                );
+                assert_eq!(state.z.to_bits(), before.z.to_bits());
+                assert!(state.memory[1].is_nan());
+                assert_eq!(state.memory[0].to_bits(), before.memory[0].to_bits());
+                assert_eq!(state.memory[2].to_bits(), before.memory[2].to_bits());
+            }
+        }
+    }
+}

@@ -83,7 +83,9 @@ pub trait Hysteresis {
     fn max_force(&self) -> f64;
 
     /// A bound on |Fh(z)| for every memory a channel can hold at deflection `z`, as `commit`
-    /// computes it (rounding included, for bounds below half the f64 range).
+    /// computes it (rounding included, for bounds below half the f64 range). A memory holding
+    /// a NaN has no bound, but never reaches the commit: its Fh is NaN, so is z⁺ (the implicit
+    /// solver returns NaN for a NaN residual), and the step refuses a non-finite z⁺ first.
     ///
     /// The step uses it to know, before committing, that the committed force will be finite,
     /// so that it can commit in place and still leave the state untouched on a divergence.
