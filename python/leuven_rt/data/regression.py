@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import cast
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import lsq_linear
 
 from .._typing import FloatArray
@@ -59,6 +59,25 @@ def regressor_matrix(regressors: Mapping[str, ArrayLike], samples: int) -> tuple
     return names, np.column_stack(columns)
 
 
+def solve_factor(r: FloatArray, projected: FloatArray, bounded: NDArray[np.bool_]) -> FloatArray:
+    """θ minimising ‖Rθ − Qᵀy‖ for the triangular factor R of a design's QR factorisation (the
+    reduced form of its least squares), with the coefficients ``bounded`` held ≥ 0."""
+    if bounded.any():
+        lower = np.where(bounded, 0.0, -np.inf)
+        return np.asarray(lsq_linear(r, projected, bounds=(lower, np.inf), method="bvls").x, dtype=np.float64)
+    return np.asarray(np.linalg.lstsq(r, projected, rcond=None)[0], dtype=np.float64)
+
+
+def factor_errors(r: FloatArray, sigma: float) -> FloatArray:
+    """Standard errors σ̂·sqrt(diag((RᵀR)⁻¹)) of the coefficients fitted on the factor R (RᵀR is
+    the design's XᵀX); infinite when RᵀR is singular."""
+    try:
+        covariance = np.linalg.inv(r.T @ r)
+    except np.linalg.LinAlgError:
+        return np.full(r.shape[1], np.inf)
+    return np.asarray(sigma * np.sqrt(np.clip(np.diag(covariance), 0.0, None)), dtype=np.float64)
+
+
 def fit_linear(
     regressors: Mapping[str, ArrayLike], y: ArrayLike, nonnegative: bool | Collection[str] = False
 ) -> LinearFit:
@@ -83,22 +102,14 @@ def fit_linear(
     # mode="r" returns R alone; numpy's stubs type every mode as the (Q, R) result.
     augmented = cast(FloatArray, np.linalg.qr(np.column_stack((matrix, target)), mode="r"))
     r, projected = augmented[:columns, :columns], augmented[:columns, columns]
-    if bounded:
-        lower = np.array([0.0 if name in bounded else -np.inf for name in names])
-        theta = lsq_linear(r, projected, bounds=(lower, np.inf), method="bvls").x
-    else:
-        theta = np.asarray(np.linalg.lstsq(r, projected, rcond=None)[0], dtype=np.float64)
+    theta = solve_factor(r, projected, np.array([name in bounded for name in names]))
     prediction = matrix @ theta
     residual = target - prediction
     singular = np.linalg.svd(r, compute_uv=False)
     condition = float(singular[0] / singular[-1]) if singular[-1] > 0 else float("inf")
     dof = max(target.size - len(names), 1)
     sigma = float(np.linalg.norm(residual) / np.sqrt(dof))
-    try:
-        covariance = np.linalg.inv(r.T @ r)
-        errors = sigma * np.sqrt(np.clip(np.diag(covariance), 0.0, None))
-    except np.linalg.LinAlgError:
-        errors = np.full(len(names), np.inf)
+    errors = factor_errors(r, sigma)
     r = np.abs(np.diag(r))
     return LinearFit(
         coefficients={name: float(value) for name, value in zip(names, theta, strict=True)},

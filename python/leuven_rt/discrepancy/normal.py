@@ -25,6 +25,7 @@ from scipy.linalg import solve_triangular
 from scipy.optimize import lsq_linear
 
 from .._typing import BoolArray, FloatArray
+from ..data.regression import factor_errors, solve_factor
 
 #: Largest condition number of the column-scaled Gram matrix that is solved directly (a relative
 #: error of about 1e-6 in the coefficients at most); above it the rows are factorised (QR).
@@ -156,20 +157,11 @@ class Normal:
         if augmented.shape[0] < p + 1:  # fewer rows than columns: pad R with zero rows
             augmented = np.vstack([augmented, np.zeros((p + 1 - augmented.shape[0], p + 1))])
         r, projected, last = augmented[:p, :p], augmented[:p, p], float(augmented[p, p])
-        bounded = np.array([name in nonnegative for name in self.names])
-        if bounded.any():
-            bounds = (np.where(bounded, 0.0, -np.inf), np.full(p, np.inf))
-            theta = np.asarray(lsq_linear(r, projected, bounds=bounds, method="bvls").x, dtype=np.float64)
-        else:
-            theta = np.asarray(np.linalg.lstsq(r, projected, rcond=None)[0], dtype=np.float64)
+        theta = solve_factor(r, projected, np.array([name in nonnegative for name in self.names]))
         misfit = r @ theta - projected
         rss = float(misfit @ misfit) + last * last
-        sigma = np.sqrt(rss / max(int(self.count[use].sum()) - p, 1))
-        try:
-            errors = sigma * np.sqrt(np.clip(np.diag(np.linalg.inv(r.T @ r)), 0.0, None))
-        except np.linalg.LinAlgError:
-            errors = np.full(p, np.inf)
-        return theta, np.asarray(errors, dtype=np.float64)
+        sigma = float(np.sqrt(rss / max(int(self.count[use].sum()) - p, 1)))
+        return theta, factor_errors(r, sigma)
 
     def _from_gram(
         self, use: list[int], nonnegative: Collection[str]
