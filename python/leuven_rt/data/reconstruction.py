@@ -1,0 +1,171 @@
+"""The motion a friction model is driven by, made from a log: the reconstruction.
+
+A log gives a loop what its sensors give: an encoder position, and sometimes a measured velocity.
+A friction model needs a velocity (or a position whose differences are one) at every sample, and
+the position for a level or a force that depends on it. The reconstruction says how they are
+made (docs/data-and-reports.md#reconstruction), and the same one is used by the fit that chooses
+it and by :func:`leuven_rt.predict` (and a compensator fed the same signal):
+
+- ``source="velocity"``: the model is driven by the log's ``v`` (through a zero-phase low-pass at
+  ``cutoff`` Hz when one is given), the level and the position force by the log's ``x``;
+- ``source="position"``: the model is driven by the log's ``x`` (raw, or through a zero-phase
+  low-pass at ``cutoff`` Hz), each step's velocity being the difference of two samples over dt.
+
+The acceleration (for a measured inertia) is the central difference of the velocity through a
+zero-phase low-pass at the lower of ``cutoff`` and a tenth of the Nyquist frequency: a raw
+encoder's second difference is noise.
+
+It also finds where a log cannot tell the direction of motion: without a velocity column, the
+motion reverses somewhere between the last encoder count in the old direction and the first in
+the new one (:func:`ambiguous_samples`). No model driven by the encoder can place a friction
+flip inside that interval, so the fit weighs those samples down.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import signal
+
+from .._typing import FloatArray
+from ..errors import DataError
+try:
+    from ..modelfile import Reconstruction
+except ImportError:  # TEMPORARY until the model file branch is merged
+    @dataclass(frozen=True)
+    class Reconstruction:  # type: ignore[no-redef]
+        source: Literal["velocity", "position"]
+        cutoff: float | None = None
+from .records import MotionData
+#: The derivative filter's order (a Butterworth low-pass, run forward and backward).
+ORDER = 4
+#: The acceleration's cutoff is at most this share of the Nyquist frequency.
+ACCELERATION_CUTOFF = 0.1
+
+
+def describe(reconstruction: Reconstruction) -> str:
+    """The reconstruction in words, for reports."""
+    if reconstruction.source == "velocity":
+        how = "as logged" if reconstruction.cutoff is None else f"through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+        return f"the logged velocity, {how}"
+    if reconstruction.cutoff is None:
+        return "the encoder position, raw (differences of consecutive samples)"
+    return f"the encoder position through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """What a model is driven by along a log: ``drive`` (a velocity or a position, per ``input``),
+    the velocity ``v`` each step holds, the position ``x`` the level and position force see, and
+    the acceleration ``a`` of the measurement's inertia term."""
+
+    reconstruction: Reconstruction
+    input: Literal["velocity", "position"]
+    drive: FloatArray
+    v: FloatArray
+    x: FloatArray
+    a: FloatArray
+    dt: float
+
+
+def check_cutoff(cutoff: float, dt: float, samples: int, name: str = "cutoff") -> float:
+    """A low-pass cutoff [Hz] that a zero-phase filter of this record can run: below the Nyquist
+    frequency, and at least a few periods long over the record."""
+    nyquist = 0.5 / dt
+    duration = samples * dt
+    # sosfiltfilt pads the record; below a few cycles per record the filter has nothing to settle on.
+    lowest = 4.0 / duration
+    if not (math.isfinite(cutoff) and lowest <= cutoff < nyquist):
+        raise DataError(
+            f"`{name}` must be in [{lowest:.3g}, {nyquist:.6g}) Hz for this record ({samples} samples "
+            f"at dt = {dt:.6g} s: at least 4 cycles over the record, below the Nyquist frequency), got {cutoff!r}"
+        )
+    return float(cutoff)
+
+
+def lowpass(values: FloatArray, dt: float, cutoff: float) -> FloatArray:
+    """Butterworth low-pass at ``cutoff`` Hz, forward and backward (zero phase)."""
+    sos = signal.butter(ORDER, cutoff, fs=1.0 / dt, output="sos")
+    return np.asarray(signal.sosfiltfilt(sos, values), dtype=np.float64)
+
+
+def differences(x: FloatArray, dt: float) -> FloatArray:
+    """vₖ = (xₖ − xₖ₋₁)/dt, v₀ = 0: the velocity a position-driven model steps with."""
+    v = np.empty_like(x)
+    v[0] = 0.0
+    np.subtract(x[1:], x[:-1], out=v[1:])
+    v[1:] /= dt
+    return v
+
+
+def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
+    """The motion of ``data`` under ``reconstruction`` (module documentation)."""
+    dt = data.dt
+    cutoff = reconstruction.cutoff
+    if cutoff is not None:
+        cutoff = check_cutoff(cutoff, dt, data.t.size)
+    slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
+    if reconstruction.source == "velocity":
+        if data.v is None:
+            raise DataError("the model is driven by the logged velocity, but the log has no `v` column")
+        v = data.v if cutoff is None else lowpass(data.v, dt, cutoff)
+        a = np.gradient(lowpass(data.v, dt, slow), dt)
+        return Motion(reconstruction, "velocity", v, v, data.x, a, dt)
+    x = data.x if cutoff is None else lowpass(data.x, dt, cutoff)
+    a = np.gradient(np.gradient(lowpass(data.x, dt, slow), dt), dt)
+    return Motion(reconstruction, "position", x, differences(x, dt), x, a, dt)
+
+
+#: Changes below this share of the median change are the rounding of a position written as
+#: decimal text (0.4235632 − 0.4235625 is not 7e-7 in binary), not encoder steps.
+ROUNDING = 1e-3
+
+
+def resolution(x: FloatArray) -> float:
+    """The encoder step: the smallest change between samples that is not rounding (0 if the
+    position never changes)."""
+    steps = np.abs(np.diff(x))
+    steps = steps[steps > 0]
+    if not steps.size:
+        return 0.0
+    steps = steps[steps >= ROUNDING * float(np.median(steps))]
+    return float(steps.min())
+
+
+def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
+    """Samples where an encoder cannot tell the direction of motion: from the last count in the old
+    direction to the first count in the new one at every reversal, widened by ``margin`` samples
+    on each side (the smearing of a filter)."""
+    out = np.zeros(x.size, dtype=bool)
+    steps = np.diff(x)
+    counts = np.flatnonzero(steps) + 1  # the samples at which the position changed
+    if counts.size < 2:
+        return out
+    sign = np.sign(steps[counts - 1])
+    for j in np.flatnonzero(sign[1:] != sign[:-1]):
+        out[max(counts[j] - margin, 0) : min(counts[j + 1] + margin, x.size)] = True
+    return out
+
+
+def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
+    """How many samples a reconstruction's filter smears a reversal over (2 for raw differences)."""
+    if reconstruction.cutoff is None:
+        return 2
+    return max(2, math.ceil(0.5 / (reconstruction.cutoff * dt)))
+
+
+__all__ = [
+    "Motion",
+    "ambiguous_samples",
+    "describe",
+    "check_cutoff",
+    "differences",
+    "filter_margin",
+    "lowpass",
+    "reconstruct",
+    "resolution",
+]

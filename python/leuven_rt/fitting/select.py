@@ -1,0 +1,313 @@
+"""The rounds: which effects of the catalogue a log supports, each chosen on the simulation error
+of the model file that holds it.
+
+1. The motion is reconstructed as the log allows (:func:`choose_reconstruction`), the samples
+   where an encoder cannot place a reversal are weighed out, and the baseline is fitted.
+2. The noise σ and the floor (:mod:`.floor`) set the unit of evidence,
+   unit = max(σ², floor²) over the weighted samples.
+3. Each round fits every effect not yet in the model, each candidate starting at the model it
+   extends (so a candidate can only gain), and adds the one whose gain in weighted mean squared
+   error exceeds ``significance``·unit and is one-sided in time (the runs of samples where it
+   does worse lose less than ``loss`` times what the others gain); among those within
+   ``significance``·unit of the best, the one with the fewest parameters. When none counts
+   alone and the model is still more than ``joint``·unit above σ², pairs are tried.
+4. A level drifting over the record (outside the catalogue) is fitted alongside when it gains
+   ``drift``·unit, and the rounds are run again with it; it is reported, never written.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._typing import FloatArray
+from ..data.reconstruction import (
+    Reconstruction,
+    ambiguous_samples,
+    filter_margin,
+    reconstruct,
+    resolution,
+)
+from ..data.records import MotionData
+from ..data.signals import residual_noise
+from ..errors import DataError
+from .evaluate import params_of
+from .floor import Floor, floor_estimate
+from .periods import find_period
+from .settings import Settings
+from .solve import Fitted, Target, fit
+from .structure import CATALOGUE, Scales, Structure
+
+#: Iterations of a candidate while it is screened; the chosen one is fitted to convergence.
+SCREEN = 12
+#: Effects tried in pairs when none counts alone: the best this many single additions.
+PAIRED = 4
+#: Elements of the presliding bank after the stiff one.
+ELEMENTS = 20
+#: The samples at each end of the record that a zero-phase filter disturbs.
+EDGE = 20
+#: A log needs this many samples that move (between encoder counts or by its velocity) to fit.
+MIN_MOVING = 100
+
+
+@dataclass(frozen=True, eq=False)
+class Step:
+    """One effect added: the fit before and after it."""
+
+    effect: str
+    before: Fitted
+    after: Fitted
+
+
+@dataclass(frozen=True, eq=False)
+class Selection:
+    """What the rounds found."""
+
+    reconstruction: Reconstruction
+    target: Target
+    scales: Scales
+    noise: float
+    floor: Floor
+    baseline: Fitted
+    steps: list[Step]
+    final: Fitted
+    drift: bool
+    """A drift of the level was significant and fitted alongside while selecting."""
+    without_drift: Fitted
+    """The final structure without the drift: the model that is written."""
+    unit: float
+    tried: list[tuple[str, float]] = field(default_factory=list)
+    """Every candidate of the last round with its gain, in units."""
+
+
+Progress = Callable[[str], None]
+
+
+def select(
+    record: MotionData,
+    baseline: Sequence[str],
+    settings: Settings,
+    progress: Progress | None = None,
+) -> Selection:
+    """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
+    say = progress or (lambda _: None)
+    structure = Structure(frozenset(baseline))
+    say("choosing the reconstruction of the motion")
+    reconstruction, target, scales, base = choose_reconstruction(record, structure)
+    params = params_of(base.evaluation.values)
+    floor = floor_estimate(params, record.x, record.dt, reconstruction, target.weight)
+    # The noise is read from what the model leaves (the force's own changes would count as noise),
+    # first the baseline's, then, once the effects are in, the final model's; the unit only falls,
+    # and the rounds go on from where they stopped when it does.
+    noise = _noise(base, target)
+    unit = _unit(noise, floor, scales)
+    say("selecting effects")
+    steps, final, tried = _rounds(base, scales, target, settings, unit, say)
+    while (better := _noise(final, target)) < noise:
+        noise = better
+        if _unit(noise, floor, scales) >= unit:
+            break
+        unit = _unit(noise, floor, scales)
+        more, final, tried = _rounds(final, scales, target, settings, unit, say)
+        steps += more
+        if not more:
+            break
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    drift = _significant(final, drifting, target, settings.drift * unit, settings)
+    without = final
+    if drift:
+        say("a drift of the level: selecting again with it fitted alongside")
+        with_drift = fit(structure.with_drift(), scales, target, base.theta)
+        steps, final, tried = _rounds(with_drift, scales, target, settings, unit, say)
+        without = fit(final.structure.with_drift(False), scales, target, final.theta)
+        base = with_drift
+    return Selection(reconstruction, target, scales, noise, floor, base, steps, final, drift, without, unit, tried)
+
+
+def _noise(fitted: Fitted, target: Target) -> float:
+    return residual_noise(target.force - fitted.force, target.rows)
+
+
+def _unit(noise: float, floor: Floor, scales: Scales) -> float:
+    return max(noise**2, floor.weighted**2, (1e-12 * scales.force) ** 2)
+
+
+def _rounds(
+    current: Fitted, scales: Scales, target: Target, settings: Settings, unit: float, say: Progress
+) -> tuple[list[Step], Fitted, list[tuple[str, float]]]:
+    steps: list[Step] = []
+    tried: list[tuple[str, float]] = []
+    while True:
+        left = [name for name in CATALOGUE if not current.structure.has(name)]
+        if not left:
+            break
+        say(f"round {len(steps) + 1}: trying {', '.join(left)}")
+        candidates = [_candidate(current, name, scales, target) for name in left]
+        candidates = [c for c in candidates if c is not None]
+        tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
+        best = _choose(current, candidates, target, settings, unit)
+        if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
+            ranked = sorted((c for c in candidates if c.mse < current.mse), key=lambda c: c.mse)[:PAIRED]
+            pairs = []
+            for first, second in itertools.combinations(ranked, 2):
+                pair = _extend(first, _added(current, second), scales, target, SCREEN)
+                if pair is not None:
+                    pairs.append(pair)
+            best = _choose(current, pairs, target, settings, unit)
+        if best is None:
+            break
+        chosen = fit(best.structure, scales, target, best.theta)
+        added = sorted(chosen.structure.effects - current.structure.effects, key=CATALOGUE.index)
+        if len(added) == 2:  # a pair: each effect its own step, the first fitted alone
+            middle = fit(_with(current.structure, added[0], best.structure), scales, target, current.theta)
+            steps.append(Step(added[0], current, middle))
+            steps.append(Step(added[1], middle, chosen))
+        else:
+            steps.append(Step(added[0], current, chosen))
+        say(f"added {', '.join(added)}: weighted rms {math.sqrt(current.mse):.4g} -> {math.sqrt(chosen.mse):.4g}")
+        current = chosen
+    return steps, current, tried
+
+
+def _added(current: Fitted, candidate: Fitted) -> str:
+    return next(iter(sorted(candidate.structure.effects - current.structure.effects, key=CATALOGUE.index)))
+
+
+def _with(structure: Structure, effect: str, template: Structure) -> Structure:
+    if effect == "position_dependence":
+        return structure.with_effect(effect, form=template.form, periods=template.periods)
+    return structure.with_effect(effect)
+
+
+def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> Fitted | None:
+    return _extend(current, effect, scales, target, SCREEN)
+
+
+def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterations: int) -> Fitted | None:
+    """``current`` with ``effect`` added, fitted from where ``current`` stands; for
+    ``position_dependence``, the better of its two forms."""
+    if effect != "position_dependence":
+        return fit(current.structure.with_effect(effect), scales, target, current.theta, iterations)
+    residual = target.force - current.force
+    rows = target.rows & (target.motion.v != 0)
+    options = []
+    for form, signal in (("level", residual * np.sign(target.motion.v)), ("force", residual)):
+        period = find_period(target.motion.x, signal, rows)
+        structure = current.structure.with_effect(effect, form=form, periods=() if period is None else (period,))
+        options.append(fit(structure, scales, target, current.theta, iterations))
+    return min(options, key=lambda fitted: fitted.mse)
+
+
+def _significant(current: Fitted, candidate: Fitted, target: Target, threshold: float, settings: Settings) -> bool:
+    """The candidate gains more than ``threshold`` in weighted mean squared error, and its gain
+    is one-sided over ``settings.chunks`` runs of samples in time."""
+    if not current.mse - candidate.mse > threshold:
+        return False
+    gain = target.weight * ((current.force - target.force) ** 2 - (candidate.force - target.force) ** 2)
+    runs = np.array([part.sum() for part in np.array_split(gain, settings.chunks)])
+    won, lost = runs[runs > 0].sum(), -runs[runs < 0].sum()
+    return bool(lost < settings.loss * won)
+
+
+def _choose(
+    current: Fitted, candidates: list[Fitted], target: Target, settings: Settings, unit: float
+) -> Fitted | None:
+    good = [c for c in candidates if _significant(current, c, target, settings.significance * unit, settings)]
+    if not good:
+        return None
+    lowest = min(c.mse for c in good)
+    close = [c for c in good if c.mse <= lowest + settings.significance * unit]
+    return min(close, key=lambda c: (len(c.theta), c.mse))
+
+
+def choose_reconstruction(record: MotionData, structure: Structure) -> tuple[Reconstruction, Target, Scales, Fitted]:
+    """The reconstruction of the motion (docs/data-and-reports.md#reconstruction) under which the
+    baseline fits the log best, with its target, scales and baseline fit: the logged velocity
+    where there is one, else the encoder position raw or through a zero-phase low-pass."""
+    if record.v is not None:
+        options = [Reconstruction("velocity")]
+    else:
+        nyquist = 0.5 / record.dt
+        options = [Reconstruction("position")] + [Reconstruction("position", share * nyquist) for share in (0.2, 0.05)]
+    best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
+    for reconstruction in options:
+        target, scales = prepare(record, reconstruction)
+        fitted = fit(structure, scales, target, _coulomb_viscous(target, structure))
+        # Reconstructions are compared on every usable sample: the weights differ between them.
+        usable = target.weight > 0
+        full = np.ones_like(target.weight)
+        full[:EDGE], full[-EDGE:] = 0.0, 0.0
+        error = float(np.mean(((fitted.force - target.force) ** 2)[full > 0]))
+        del usable
+        if best is None or error < best[0]:
+            best = (error, reconstruction, target, scales, fitted)
+    assert best is not None
+    return best[1], best[2], best[3], best[4]
+
+
+def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target, Scales]:
+    """The target (force, weights, motion) and scales of ``record`` under ``reconstruction``."""
+    motion = reconstruct(record, reconstruction)
+    samples = record.t.size
+    weight = np.ones(samples)
+    edge = min(EDGE, samples // 10)
+    weight[:edge], weight[samples - edge :] = 0.0, 0.0
+    if reconstruction.source == "position":
+        weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
+    moving = (weight > 0) & (motion.v != 0)
+    step = resolution(record.x)
+    stroke = float(np.ptp(record.x))
+    if np.count_nonzero(moving) < MIN_MOVING or not stroke > 10.0 * step:
+        raise DataError(
+            f"no sliding motion: {np.count_nonzero(moving)} samples move and the position spans {stroke:.3g} "
+            f"(encoder step {step:.3g}); a log to identify from needs the axis to slide back and forth, over "
+            f"at least {MIN_MOVING} moving samples and many encoder steps"
+        )
+    speeds = np.abs(motion.v[moving])
+    high = float(np.percentile(speeds, 99))
+    low = max(float(np.percentile(speeds, 1)), 1e-3 * high)
+    force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
+    stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
+    lowest = max(3.0 * step, 1e-5 * stroke)
+    highest = max(min(0.02 * stroke, 0.5 * _excursion(record.x)), 30.0 * lowest)
+    grid = np.geomspace(lowest, highest, ELEMENTS)
+    # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
+    # of the widest Δ (docs/parameters.md#rules).
+    stiff = max(stiff, highest * 2.0**-24)
+    middle = 0.5 * float(record.x.max() + record.x.min())
+    scales = Scales(speed_low=low, speed_high=high, force=force_scale, stiff=stiff, grid=grid, middle=middle,
+                    half_stroke=0.5 * stroke)  # fmt: skip
+    tau = np.linspace(-1.0, 1.0, samples)
+    return Target(record.f, weight, motion, tau), scales
+
+
+def _excursion(x: FloatArray) -> float:
+    """The median travel between reversals."""
+    steps = np.diff(x)
+    steps = steps[steps != 0]
+    if steps.size == 0:
+        return 0.0
+    turns = np.flatnonzero(np.sign(steps[1:]) != np.sign(steps[:-1]))
+    path = np.cumsum(steps)
+    points = np.concatenate(([0.0], path[turns], [path[-1]]))
+    return float(np.median(np.abs(np.diff(points))))
+
+
+def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:
+    """Where the baseline starts: a Coulomb–viscous–offset least-squares fit."""
+    rows = target.rows
+    v = target.motion.v[rows]
+    design = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    coefficients = np.linalg.lstsq(design, target.force[rows], rcond=None)[0]
+    scale = float(np.std(target.force[rows])) or 1.0
+    out = {"Fc": max(float(coefficients[0]), 1e-3 * scale), "sigma2": max(float(coefficients[1]), 0.0)}
+    if structure.has("offset"):
+        out["offset"] = float(coefficients[2])
+    return out
+
+
+__all__ = ["Selection", "Step", "choose_reconstruction", "prepare", "select"]

@@ -1,0 +1,53 @@
+"""The thresholds of the rounds, in one object that :func:`leuven_rt.identify` and
+:func:`leuven_rt.diagnose` take and their reports echo. Every threshold is a plain count or a
+multiple of the unit of evidence, max(σ², floor²): the force noise σ or, where the log cannot do
+better, the floor of the error the right model would still have with this log's motion signal
+(docs/effects.md#the-floor). Never a share of the current error, so that the same evidence counts
+the same whether the model is far from the data or close to it."""
+
+from __future__ import annotations
+
+import numbers
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from ..errors import InputError
+
+
+@dataclass(frozen=True, kw_only=True)
+class Settings:
+    """What counts as evidence in :func:`leuven_rt.identify` and :func:`leuven_rt.diagnose`
+    (docs/effects.md#how-an-effect-is-chosen); "unit" is max(σ², floor²)."""
+
+    chunks: int = 16
+    """Contiguous runs of held-out samples over which a gain must be one-sided."""
+    significance: float = 0.5
+    """An effect counts when it lowers the held-out mean squared error by more than this many units."""
+    loss: float = 0.2
+    """... and the runs where it does worse lose less than this share of what the others gain."""
+    joint: float = 1.0
+    """When no single effect counts but the held-out mean squared error exceeds σ² by more than this
+    many units, pairs of effects are tried together."""
+    drift: float = 1.0
+    """A friction level drifting over the record is fitted alongside (and reported) when it lowers
+    the final model's held-out mean squared error by more than this many units (one-sided as above)."""
+    unexplained: float = 0.2
+    """What remains is significant when its weighted mean square exceeds σ² by more than this many
+    units."""
+
+    def __post_init__(self) -> None:
+        for name, low in (("chunks", 2),):
+            value: Any = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+                raise InputError(f"`settings.{name}` must be an integer >= {low}, got {value!r:.80}")
+        for name in ("significance", "loss", "joint", "drift", "unexplained"):
+            value = getattr(self, name)
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, numbers.Real)
+                or not 0.0 <= float(value) < float("inf")
+            ):
+                raise InputError(f"`settings.{name}` must be a finite number >= 0, got {value!r:.80}")
+
+    def to_dict(self) -> dict[str, float]:
+        return asdict(self)
