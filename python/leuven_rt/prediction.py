@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ._checks import real_number
 from ._typing import FloatArray
 from .data.records import DataLike, as_motion_data
 from .data.signals import estimate_derivatives
@@ -108,7 +107,7 @@ def predict(
             f"`units` is {kind!r}, but the model is {chosen.units!r}: a model fits one kind of axis"
         )
     record = as_motion_data(data, columns=columns, units=kind)
-    derivatives = estimate_derivatives(record, None if cutoff is None else real_number(cutoff, "cutoff"))
+    derivatives = estimate_derivatives(record, cutoff)
     dt = record.dt
     x = derivatives.x
     friction, f_model = model_forces(chosen, x, derivatives.a, dt)
