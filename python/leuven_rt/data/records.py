@@ -432,12 +432,18 @@ def _is_number(cell: str) -> bool:
 
 def _dialect(lines: list[str]) -> tuple[str, str]:
     """The separator and quote character of a CSV log, sniffed from its header and the lines after
-    it (``,`` when nothing else fits: a file of one column)."""
-    try:
-        sniffed = csv.Sniffer().sniff("\n".join(lines), delimiters=SEPARATORS)
-    except csv.Error:  # one column, or no separator that fits every line
-        return ",", '"'
-    return sniffed.delimiter, sniffed.quotechar or '"'
+    it, or from the header alone when no separator fits every one of those (a ragged line among
+    them); ``,`` when nothing fits (a file of one column). Tab and ``;`` are tried before ``,``:
+    the decimal commas of a ``;`` file are as regular as its separators once a header line is
+    missing, and the sniffer would prefer the comma."""
+    for sample in (lines, lines[:1]):
+        for separator in SEPARATORS[::-1]:
+            try:
+                sniffed = csv.Sniffer().sniff("\n".join(sample), delimiters=separator)
+            except csv.Error:  # this separator does not fit every line
+                continue
+            return sniffed.delimiter, sniffed.quotechar or '"'
+    return ",", '"'
 
 
 def load_csv(path: Path) -> dict[str, FloatArray]:
@@ -474,7 +480,7 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
     if not any(header):
         raise DataError(f"{path} must start with a header line naming the columns, e.g. `t,x,f`")
     named = [name for name in header if name]
-    if all(_is_number(name) for name in named):
+    if all(_is_number(name.replace(",", ".") if separator == ";" else name) for name in named):
         raise DataError(
             f"cannot read {path} as {expected}: line {first + 1} holds numbers "
             f"({lines[first].strip()!r:.60}), not column names: the header line is missing (add one, "
