@@ -80,6 +80,7 @@ MS_TRAVEL = 20.0
 #: opposite sign is refused (v = -dx/dt); a median ratio of the two beyond VELOCITY_RATIO (either
 #: way) is warned of: another unit (mm/s against m, deg/s against rad, rev/s: 2π, time in ms).
 VELOCITY_WINDOWS = 1000
+NOISE_SAMPLES = 100_000
 MOVING = 4.0
 MIN_MOVING_WINDOWS = 20
 MAX_SIGN_DISAGREEMENT = 0.5
@@ -285,8 +286,10 @@ def velocity_agreement(t: FloatArray, x: FloatArray, v: FloatArray) -> VelocityA
     dx = np.diff(x)
     steps = np.abs(dx)
     smallest = float(np.min(steps[steps > 0]))  # the caller has refused a position that never changes
-    # The noise of x from its second differences (a smooth motion's are tiny): 1.4826·MAD/√6.
-    second = np.diff(dx)
+    # The noise of x from its second differences (a smooth motion's are tiny): 1.4826·MAD/√6, read
+    # on at most NOISE_SAMPLES of them, spread over the record (a statistic needs no more).
+    at = np.arange(0, dx.size - 1, max(1, (dx.size - 1) // NOISE_SAMPLES))
+    second = dx[at + 1] - dx[at]
     noise = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / np.sqrt(6.0)
     resolution = max(smallest, noise)
     integral = np.concatenate(([0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))))
