@@ -98,7 +98,8 @@ def predict(
 
     ``columns``: the log's names for ``t``, ``x``, ``f``, ``v``. ``units``: the log's kind of axis,
     which must be the model's (default: the model's). ``cutoff``: the position filter's cutoff
-    [Hz] (default a tenth of the Nyquist frequency, as for identification).
+    [Hz] (default a tenth of the Nyquist frequency, as for identification); one the record does
+    not support is refused (:func:`leuven_rt.data.signals.check_cutoff`).
     """
     chosen = as_model_file(model)
     kind = chosen.units if units is None else check_units(units, error=DataError)
