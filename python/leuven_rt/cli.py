@@ -166,11 +166,10 @@ def _predict(arguments: argparse.Namespace) -> int:
     from .modelfile import ModelFile
     from .prediction import predict
 
-    target = check_outputs(
-        [("-o/--output", arguments.output, False)],
-        inputs=[arguments.model, arguments.data],
-        force=arguments.force,
-    )[0]
+    outputs: list[tuple[str, str, bool]] = [("-o/--output", arguments.output, False)]
+    if arguments.plot is not None:
+        outputs.append(("--plot", arguments.plot, True))
+    target = check_outputs(outputs, inputs=[arguments.model, arguments.data], force=arguments.force)[0]
     model = ModelFile.load(arguments.model)
     if arguments.units is not None and arguments.units != model.units:
         raise InputError(
@@ -180,10 +179,10 @@ def _predict(arguments: argparse.Namespace) -> int:
     prediction = predict(model, _load(arguments), cutoff=arguments.cutoff)
     # The target was checked before the work; force here: only a file made meanwhile can be in the way.
     prediction.to_csv(target, force=True)
+    if arguments.plot is not None:
+        prediction.plot(arguments.plot, force=True)
     if arguments.json:
-        summary = {"rms": prediction.rms, "samples": prediction.samples, "units": prediction.units,
-                   "warnings": list(prediction.notes)}  # fmt: skip
-        print(json.dumps(summary))
+        print(json.dumps(prediction.to_dict()))
     else:
         print(prediction.summary())
         print(f"prediction: {arguments.output}")
@@ -269,10 +268,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     predict.add_argument("data", help=LOG_HELP)
     predict.add_argument("-o", "--output", required=True, help="where to write the prediction (CSV)")
     predict.add_argument(
-        "--json", action="store_true", help='print {"rms", "samples", "units", "warnings"} as JSON on stdout'
+        "--json",
+        action="store_true",
+        help='print {"rms", "rms_causal", "samples", "units", "reconstruction", "warnings"} as JSON on stdout',
     )
     predict.add_argument(
-        "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
+        "--cutoff",
+        type=float,
+        help="the low-pass cutoff [Hz] of the motion signal, in place of the model file's reconstruction",
+    )
+    predict.add_argument(
+        "--plot", help="also draw the measured and predicted force here (.png, .pdf, .svg, …)"
     )
     predict.add_argument("--force", action="store_true", help=FORCE_HELP)
     _add_log_options(predict, units=None)  # the model file says its units; --units only confirms them

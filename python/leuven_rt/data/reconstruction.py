@@ -29,7 +29,6 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import signal
 
 from .._typing import FloatArray
 from ..errors import DataError
@@ -41,8 +40,7 @@ except ImportError:  # TEMPORARY until the model file branch is merged
         source: Literal["velocity", "position"]
         cutoff: float | None = None
 from .records import MotionData
-#: The derivative filter's order (a Butterworth low-pass, run forward and backward).
-ORDER = 4
+from .signals import check_cutoff, lowpass
 #: The acceleration's cutoff is at most this share of the Nyquist frequency.
 ACCELERATION_CUTOFF = 0.1
 
@@ -70,27 +68,6 @@ class Motion:
     x: FloatArray
     a: FloatArray
     dt: float
-
-
-def check_cutoff(cutoff: float, dt: float, samples: int, name: str = "cutoff") -> float:
-    """A low-pass cutoff [Hz] that a zero-phase filter of this record can run: below the Nyquist
-    frequency, and at least a few periods long over the record."""
-    nyquist = 0.5 / dt
-    duration = samples * dt
-    # sosfiltfilt pads the record; below a few cycles per record the filter has nothing to settle on.
-    lowest = 4.0 / duration
-    if not (math.isfinite(cutoff) and lowest <= cutoff < nyquist):
-        raise DataError(
-            f"`{name}` must be in [{lowest:.3g}, {nyquist:.6g}) Hz for this record ({samples} samples "
-            f"at dt = {dt:.6g} s: at least 4 cycles over the record, below the Nyquist frequency), got {cutoff!r}"
-        )
-    return float(cutoff)
-
-
-def lowpass(values: FloatArray, dt: float, cutoff: float) -> FloatArray:
-    """Butterworth low-pass at ``cutoff`` Hz, forward and backward (zero phase)."""
-    sos = signal.butter(ORDER, cutoff, fs=1.0 / dt, output="sos")
-    return np.asarray(signal.sosfiltfilt(sos, values), dtype=np.float64)
 
 
 def differences(x: FloatArray, dt: float) -> FloatArray:
@@ -151,6 +128,20 @@ def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
     return out
 
 
+def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
+    """|x − x at the last change of the direction of motion| at every sample."""
+    direction = np.sign(v)
+    moving = np.flatnonzero(direction)
+    turns = np.zeros(x.size, dtype=bool)
+    if moving.size > 1:
+        flips = moving[1:][direction[moving[1:]] != direction[moving[:-1]]]
+        turns[flips] = True
+    turns[0] = True
+    start = np.maximum.accumulate(np.where(turns, np.arange(x.size), 0))
+    out: FloatArray = np.abs(x - x[start])
+    return out
+
+
 def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
     """How many samples a reconstruction's filter smears a reversal over (2 for raw differences)."""
     if reconstruction.cutoff is None:
@@ -162,10 +153,9 @@ __all__ = [
     "Motion",
     "ambiguous_samples",
     "describe",
-    "check_cutoff",
     "differences",
     "filter_margin",
-    "lowpass",
     "reconstruct",
     "resolution",
+    "travel_since_reversal",
 ]

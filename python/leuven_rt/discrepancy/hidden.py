@@ -29,7 +29,7 @@ from ..data.records import MotionData
 from ..data.synthetic import excitation
 from ..params import Params
 from ..simulation import simulate_position
-from .effects import parse_effects
+from ..fitting.structure import parse_effects
 
 FC = 1.0  # N
 SIGMA2 = 10.0  # N·s/m

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._typing import FloatArray
+from ..data.reconstruction import travel_since_reversal
 
 #: Regions smaller than this share of the usable samples are not reported.
 MIN_SHARE = 0.03
@@ -29,20 +30,6 @@ class Region:
     """Share of the usable samples."""
     rms: float
     mean: float
-
-
-def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
-    """|x − x at the last change of the direction of motion| at every sample."""
-    direction = np.sign(v)
-    moving = np.flatnonzero(direction)
-    turns = np.zeros(x.size, dtype=bool)
-    if moving.size > 1:
-        flips = moving[1:][direction[moving[1:]] != direction[moving[:-1]]]
-        turns[flips] = True
-    turns[0] = True
-    start = np.maximum.accumulate(np.where(turns, np.arange(x.size), 0))
-    out: FloatArray = np.abs(x - x[start])
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,4 +105,4 @@ def _describe(name: str, share: float, before: float, after: float | None, unit:
     return f"{name}: {numbers} over {share:.0%} of the samples"
 
 
-__all__ = ["Layout", "Region", "travel_since_reversal"]
+__all__ = ["Layout", "Region"]

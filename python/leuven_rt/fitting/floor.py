@@ -4,12 +4,15 @@ gives.
 With a logged velocity the model is driven by the motion itself, and the floor is 0 (the force
 noise alone remains). Driven by an encoder, a model places each friction flip at an encoder
 count, not where the motion reversed, and in slow sliding it sees a staircase instead of a
-smooth motion. :func:`floor_estimate` measures that on the log's own motion: it runs the fitted
-friction model along a smooth version of the position (a Gaussian smoothing, which creates no
-reversal that is not in the record) and along the same smooth motion sensed again by an encoder
-of the log's resolution and reconstructed as the fit reconstructs the log; the rms of the
-difference is the floor, over every usable sample (``full``) and over the samples the fit weighs
-(``weighted``: the reversals an encoder cannot place left out).
+smooth motion. Two parts:
+
+- away from reversals (the samples the fit weighs), :func:`floor_estimate` runs the fitted
+  friction model along a smooth version of the position (a Gaussian smoothing, which creates no
+  reversal that is not in the record) and along the same smooth motion sensed again by an
+  encoder of the log's resolution; the rms of the difference is the ``weighted`` floor;
+- at the reversals an encoder cannot place (the samples the fit leaves out), where the motion
+  reversed is unknown, so the flips' error is read from the fit itself (:func:`with_reversals`):
+  what the model leaves there beyond what it leaves elsewhere.
 """
 
 from __future__ import annotations
@@ -21,14 +24,8 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
 from .._typing import FloatArray
-from ..data.reconstruction import (
-    Reconstruction,
-    ambiguous_samples,
-    differences,
-    filter_margin,
-    lowpass,
-    resolution,
-)
+from ..data.reconstruction import Reconstruction, ambiguous_samples, filter_margin, resolution
+from ..data.signals import lowpass
 from ..params import Params
 from ..simulation import simulate_position
 
@@ -58,13 +55,20 @@ def floor_estimate(
     smooth = simulate_position(params, proxy, dt)
     seen = simulate_position(params, drive, dt)
     square = (smooth - seen) ** 2
-    full = usable > 0
-    weighted = full & ~ambiguous_samples(sensed, filter_margin(reconstruction, dt))
-    return Floor(_rms(square, full), _rms(square, weighted))
+    weighted = (usable > 0) & ~ambiguous_samples(sensed, filter_margin(reconstruction, dt))
+    floor = _rms(square, weighted)
+    return Floor(floor, floor)
+
+
+def with_reversals(floor: Floor, mse_every: float, mse_weighted: float) -> Floor:
+    """``floor`` with the error at the reversals an encoder cannot place: a fit that leaves
+    ``mse_weighted`` on the samples it weighs and ``mse_every`` on every usable sample leaves
+    the difference at those reversals."""
+    return Floor(math.sqrt(max(mse_every - mse_weighted, 0.0) + floor.weighted**2), floor.weighted)
 
 
 def _rms(square: FloatArray, rows: np.ndarray) -> float:
     return math.sqrt(float(np.mean(square[rows]))) if np.any(rows) else 0.0
 
 
-__all__ = ["Floor", "differences", "floor_estimate"]
+__all__ = ["Floor", "floor_estimate", "with_reversals"]

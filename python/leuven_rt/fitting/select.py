@@ -20,7 +20,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -36,7 +36,7 @@ from ..data.records import MotionData
 from ..data.signals import residual_noise
 from ..errors import DataError
 from .evaluate import params_of
-from .floor import Floor, floor_estimate
+from .floor import Floor, floor_estimate, with_reversals
 from .periods import find_period
 from .settings import Settings
 from .solve import Fitted, Target, fit
@@ -50,6 +50,9 @@ PAIRED = 4
 ELEMENTS = 20
 #: The samples at each end of the record that a zero-phase filter disturbs.
 EDGE = 20
+#: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
+#: frequency.
+FILTERS = (0.2, 0.05)
 #: A log needs this many samples that move (between encoder counts or by its velocity) to fit.
 MIN_MOVING = 100
 
@@ -80,8 +83,14 @@ class Selection:
     without_drift: Fitted
     """The final structure without the drift: the model that is written."""
     unit: float
-    tried: list[tuple[str, float]] = field(default_factory=list)
+    tried: list[tuple[str, float]]
     """Every candidate of the last round with its gain, in units."""
+    file_reconstruction: Reconstruction
+    """How the written file reconstructs the motion: the one under which it predicts the log best."""
+    file_target: Target
+    file_scales: Scales
+    written: Fitted
+    """``without_drift`` refitted under ``file_reconstruction``: the model that is written."""
 
 
 Progress = Callable[[str], None]
@@ -96,8 +105,9 @@ def select(
     """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
     say = progress or (lambda _: None)
     structure = Structure(frozenset(baseline))
-    say("choosing the reconstruction of the motion")
-    reconstruction, target, scales, base = choose_reconstruction(record, structure)
+    reconstruction = rounds_reconstruction(record)
+    target, scales = prepare(record, reconstruction)
+    base = fit(structure, scales, target, _coulomb_viscous(target, structure))
     params = params_of(base.evaluation.values)
     floor = floor_estimate(params, record.x, record.dt, reconstruction, target.weight)
     # The noise is read from what the model leaves (the force's own changes would count as noise),
@@ -107,9 +117,12 @@ def select(
     unit = _unit(noise, floor, scales)
     say("selecting effects")
     steps, final, tried = _rounds(base, scales, target, settings, unit, say)
-    while (better := _noise(final, target)) < noise:
-        noise = better
-        if _unit(noise, floor, scales) >= unit:
+    while True:
+        # What the model leaves on the weighted samples bounds the floor there from above (it is
+        # the floor when the model is right), and its differences read the noise.
+        noise = min(noise, _noise(final, target))
+        floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
+        if not _unit(noise, floor, scales) < unit:
             break
         unit = _unit(noise, floor, scales)
         more, final, tried = _rounds(final, scales, target, settings, unit, say)
@@ -125,7 +138,13 @@ def select(
         steps, final, tried = _rounds(with_drift, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
         base = with_drift
-    return Selection(reconstruction, target, scales, noise, floor, base, steps, final, drift, without, unit, tried)
+    if reconstruction.source == "position":
+        floor = with_reversals(floor, full_mse(final, target), final.mse)
+    say("choosing how the written file reconstructs the motion")
+    file = choose_reconstruction(record, without)
+    written = file[3] if file[0] == reconstruction else fit(without.structure, file[2], file[1], file[3].theta)
+    return Selection(reconstruction, target, scales, noise, floor, base, steps, final, drift, without, unit, tried,
+                     file[0], file[1], file[2], written)  # fmt: skip
 
 
 def _noise(fitted: Fitted, target: Target) -> float:
@@ -224,27 +243,44 @@ def _choose(
     return min(close, key=lambda c: (len(c.theta), c.mse))
 
 
-def choose_reconstruction(record: MotionData, structure: Structure) -> tuple[Reconstruction, Target, Scales, Fitted]:
-    """The reconstruction of the motion (docs/data-and-reports.md#reconstruction) under which the
-    baseline fits the log best, with its target, scales and baseline fit: the logged velocity
-    where there is one, else the encoder position raw or through a zero-phase low-pass."""
+def rounds_reconstruction(record: MotionData) -> Reconstruction:
+    """The reconstruction the rounds name effects under: the logged velocity where there is one,
+    else the raw encoder position, whose ambiguous reversals are known to the sample."""
+    return Reconstruction("velocity") if record.v is not None else Reconstruction("position")
+
+
+def reconstruction_options(record: MotionData) -> list[Reconstruction]:
+    """The reconstructions the written file may use (docs/data-and-reports.md#reconstruction):
+    that of the rounds, and the encoder position through zero-phase low-passes."""
+    nyquist = 0.5 / record.dt
+    options = [rounds_reconstruction(record)]
     if record.v is not None:
-        options = [Reconstruction("velocity")]
-    else:
-        nyquist = 0.5 / record.dt
-        options = [Reconstruction("position")] + [Reconstruction("position", share * nyquist) for share in (0.2, 0.05)]
+        options.append(Reconstruction("position"))
+    options += [Reconstruction("position", share * nyquist) for share in FILTERS]
+    return options
+
+
+def full_mse(fitted: Fitted, target: Target) -> float:
+    """The mean squared simulation error over every sample but the filter's edges: what
+    :func:`leuven_rt.predict` reports, whatever the weights."""
+    edge = min(EDGE, target.force.size // 10)
+    error = (fitted.force - target.force)[edge : target.force.size - edge]
+    return float(np.mean(error**2))
+
+
+def choose_reconstruction(record: MotionData, fitted: Fitted, iterations: int = SCREEN) -> tuple[Reconstruction, Target, Scales, Fitted]:
+    """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
+    every sample, with its target, scales and fit."""
     best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
-    for reconstruction in options:
-        target, scales = prepare(record, reconstruction)
-        fitted = fit(structure, scales, target, _coulomb_viscous(target, structure))
-        # Reconstructions are compared on every usable sample: the weights differ between them.
-        usable = target.weight > 0
-        full = np.ones_like(target.weight)
-        full[:EDGE], full[-EDGE:] = 0.0, 0.0
-        error = float(np.mean(((fitted.force - target.force) ** 2)[full > 0]))
-        del usable
+    for reconstruction in reconstruction_options(record):
+        try:
+            target, scales = prepare(record, reconstruction)
+        except DataError:
+            continue
+        refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
+        error = full_mse(refitted, target)
         if best is None or error < best[0]:
-            best = (error, reconstruction, target, scales, fitted)
+            best = (error, reconstruction, target, scales, refitted)
     assert best is not None
     return best[1], best[2], best[3], best[4]
 

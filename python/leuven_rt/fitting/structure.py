@@ -28,12 +28,13 @@ by one matrix product.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .._typing import FloatArray
+from ..errors import InputError
 
 #: The effect names, in the order the catalogue lists them (docs/effects.md#the-effects).
 CATALOGUE = (
@@ -55,6 +56,23 @@ FRICTION = ("Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2", "Fc_neg", "Fs_ne
 STIFF_MARGIN = 2.0
 #: Harmonics of each ripple period.
 HARMONICS = 3
+
+
+def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tuple[str, ...]:
+    """Effect names from a list or a comma-separated string; unknown or repeated names are refused."""
+    given: object = names  # checked as what may come, not as what is declared
+    if not isinstance(given, (str, Sequence)) or isinstance(given, (bytes, bytearray)):
+        raise InputError(f"`{argument}` must be effect names, as a list or comma-separated, got {names!r:.80}")
+    items = [name.strip() for name in names.split(",")] if isinstance(names, str) else list(names)
+    items = [name for name in items if name]
+    if any(not isinstance(name, str) for name in items):
+        raise InputError(f"`{argument}` must be effect names (strings), got {items!r}")
+    unknown = [name for name in items if name not in CATALOGUE]
+    if unknown:
+        raise InputError(f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}")
+    if len(set(items)) != len(items):
+        raise InputError(f"`{argument}` repeats effects: got {items}")
+    return tuple(items)
 
 
 @dataclass(frozen=True)
@@ -310,4 +328,4 @@ def _series(
     return trend, ripples
 
 
-__all__ = ["CATALOGUE", "FORMS", "FRICTION", "HARMONICS", "Scales", "Structure", "Values", "bounds", "start", "unpack"]
+__all__ = ["CATALOGUE", "FORMS", "FRICTION", "HARMONICS", "Scales", "Structure", "Values", "bounds", "parse_effects", "start", "unpack"]
