@@ -7,11 +7,13 @@ from numpy.typing import NDArray
 from typing_extensions import Self, disjoint_base
 
 __all__ = [
+    "ERROR_KINDS",
     "MAX_ELEMENTS",
     "MAX_HARMONICS",
     "MAX_ITERATIONS",
     "MAX_RIPPLES",
     "CompensatorEngine",
+    "ConcurrentUseError",
     "CoreLevel",
     "CoreParams",
     "DivergenceError",
@@ -30,13 +32,43 @@ MAX_ELEMENTS: int
 MAX_ITERATIONS: int
 MAX_RIPPLES: int
 MAX_HARMONICS: int
+ERROR_KINDS: list[str]
 
 _Scheme = Literal["implicit", "explicit"]
 _Mode = Literal["feedforward", "observer"]
 
-class ParameterError(ValueError): ...
-class InputError(ValueError): ...
-class DivergenceError(ValueError): ...
+class _ErrorData:
+    """The data every error of the package carries (docs/errors.md#error-data)."""
+
+    kind: str | None
+    field: str | None
+    value: Any
+    bound: Any
+    index: int | None
+    sample: int | None
+    channel: int | None
+    expected: Any
+    got: Any
+    def __new__(
+        cls,
+        message: str,
+        /,
+        *,
+        kind: str | None = None,
+        field: str | None = None,
+        value: object = None,
+        bound: object = None,
+        index: int | None = None,
+        sample: int | None = None,
+        channel: int | None = None,
+        expected: object = None,
+        got: object = None,
+    ) -> Self: ...
+
+class ParameterError(_ErrorData, ValueError): ...
+class InputError(_ErrorData, ValueError): ...
+class DivergenceError(_ErrorData, ValueError): ...
+class ConcurrentUseError(_ErrorData, RuntimeError): ...
 
 class _ParamsLike(Protocol):
     """What the extension reads from a parameter set: the attributes of ``leuven_rt.Params``."""

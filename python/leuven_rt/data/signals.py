@@ -13,7 +13,7 @@ import numpy as np
 from scipy import signal
 
 from .._typing import FloatArray
-from ..errors import DataError
+from ..errors import DataError, shown
 from .records import MotionData
 
 
@@ -31,7 +31,13 @@ def lowpass(values: FloatArray, dt: float, cutoff: float, order: int = 4) -> Flo
     """Butterworth low-pass of ``order`` at ``cutoff`` [Hz], run forward and backward (zero phase)."""
     nyquist = 0.5 / dt
     if not 0.0 < cutoff < nyquist:
-        raise DataError(f"`cutoff` must be in (0, {nyquist:g}) Hz (the Nyquist frequency), got {cutoff!r}")
+        raise DataError(
+            f"`cutoff` must be in (0, {nyquist:g}) Hz (the Nyquist frequency), got {shown(cutoff)!r}",
+            kind="out_of_range",
+            field="cutoff",
+            value=cutoff,
+            bound=nyquist if cutoff > 0.0 else 0.0,
+        )
     sos = signal.butter(order, cutoff, fs=1.0 / dt, output="sos")
     return np.asarray(signal.sosfiltfilt(sos, values), dtype=np.float64)
 

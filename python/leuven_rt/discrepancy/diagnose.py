@@ -26,7 +26,7 @@ from .._extras import progress_wanted
 from .._typing import FloatArray
 from ..data.records import DataLike, as_motion_data
 from ..data.signals import noise_floor
-from ..errors import InputError
+from ..errors import InputError, shown
 from ..units import unit_names
 from .drive import Drive
 from .effects import CATALOGUE, DRIFT, parse_effects
@@ -89,7 +89,12 @@ def diagnose(
     if settings is None:
         settings = Settings()
     elif not isinstance(settings, Settings):
-        raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
+        raise InputError(
+            f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {shown(settings)!r:.80}",
+            kind="wrong_type",
+            field="settings",
+            value=settings,
+        )
     record = as_motion_data(data)
     full = compute_features(record)
     stride = math.ceil(np.count_nonzero(full.usable) / FIT_SAMPLES)
