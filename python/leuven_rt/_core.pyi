@@ -37,7 +37,14 @@ ERROR_KINDS: list[str]
 _Scheme = Literal["implicit", "explicit"]
 _Mode = Literal["feedforward", "observer"]
 
-class _ErrorData:
+class _ObjectInit:
+    """The errors' ``__init__`` is ``object.__init__`` at run time (``BaseException.__init__``
+    refuses keywords); ``__new__`` takes the arguments. A base of its own, so that type checkers
+    check calls against ``__new__``."""
+
+    def __init__(self) -> None: ...
+
+class _ErrorData(_ObjectInit):
     """The data every error of the package carries (docs/errors.md#error-data)."""
 
     kind: str | None

@@ -351,26 +351,50 @@ def _shape(field: str, expected: tuple[int, ...], got: tuple[int, ...]) -> dict[
         pytest.param(lambda s: _replace(s, z=s.z[:1]), _shape("z", (2,), (1,)), id="z"),
         pytest.param(lambda s: _replace(s, z=s.z[:, None]), _shape("z", (2,), (2, 1)), id="z-2d"),
         pytest.param(lambda s: _replace(s, zeta=s.zeta[:, :3]), _shape("zeta", (2, 4), (2, 3)), id="zeta"),
-        pytest.param(lambda s: _replace(s, zeta=s.zeta.ravel()), _shape("zeta", (2, 4), (8,)), id="zeta-flat"),
-        pytest.param(lambda s: _replace(s, last_position=np.zeros(3)), _shape("last_position", (2,), (3,)),
-                     id="last"),
-        pytest.param(lambda s: _replace(s, has_last_position=np.ones((2, 2), bool)),
-                     _shape("has_last_position", (2,), (2, 2)), id="has_last"),
-        pytest.param(lambda s: _replace(s, z=np.array([0.0, np.nan])), {"kind": "not_finite", "field": "state.z"},
-                     id="z-nan"),
-        pytest.param(lambda s: _replace(s, zeta=np.full((2, 4), np.inf)),
-                     {"kind": "not_finite", "field": "state.zeta"}, id="zeta-inf"),
-        pytest.param(lambda s: (s.z, s.zeta, s.last_position, s.has_last_position),
-                     {"kind": "wrong_type", "field": "state"}, id="tuple"),
-        pytest.param(lambda s: LeuvenModel(MAXWELL, channels=3).state, _shape("z", (2,), (3,)), id="other-model"),
-        pytest.param(lambda s: LeuvenModel(LUGRE, channels=2).state, _shape("zeta", (2, 4), (2, 0)),
-                     id="linear-model"),
-        pytest.param(lambda s: _replace(s, z=np.array(["a", "b"])), {"kind": "not_real", "field": "state.z"},
-                     id="z-strings"),
-        pytest.param(lambda s: _replace(s, has_last_position=np.array([1.0, 0.0])),
-                     {"kind": "wrong_type", "field": "state.has_last_position"}, id="has_last-float"),
+        pytest.param(
+            lambda s: _replace(s, zeta=s.zeta.ravel()), _shape("zeta", (2, 4), (8,)), id="zeta-flat"
+        ),
+        pytest.param(
+            lambda s: _replace(s, last_position=np.zeros(3)), _shape("last_position", (2,), (3,)), id="last"
+        ),
+        pytest.param(
+            lambda s: _replace(s, has_last_position=np.ones((2, 2), bool)),
+            _shape("has_last_position", (2,), (2, 2)),
+            id="has_last",
+        ),
+        pytest.param(
+            lambda s: _replace(s, z=np.array([0.0, np.nan])),
+            {"kind": "not_finite", "field": "state.z"},
+            id="z-nan",
+        ),
+        pytest.param(
+            lambda s: _replace(s, zeta=np.full((2, 4), np.inf)),
+            {"kind": "not_finite", "field": "state.zeta"},
+            id="zeta-inf",
+        ),
+        pytest.param(
+            lambda s: (s.z, s.zeta, s.last_position, s.has_last_position),
+            {"kind": "wrong_type", "field": "state"},
+            id="tuple",
+        ),
+        pytest.param(
+            lambda s: LeuvenModel(MAXWELL, channels=3).state, _shape("z", (2,), (3,)), id="other-model"
+        ),
+        pytest.param(
+            lambda s: LeuvenModel(LUGRE, channels=2).state, _shape("zeta", (2, 4), (2, 0)), id="linear-model"
+        ),
+        pytest.param(
+            lambda s: _replace(s, z=np.array(["a", "b"])),
+            {"kind": "not_real", "field": "state.z"},
+            id="z-strings",
+        ),
+        pytest.param(
+            lambda s: _replace(s, has_last_position=np.array([1.0, 0.0])),
+            {"kind": "wrong_type", "field": "state.has_last_position"},
+            id="has_last-float",
+        ),
     ],
-)  # fmt: skip
+)
 def test_set_state_checks_shapes_and_values(
     change: Callable[[ModelState], Any], data: dict[str, Any]
 ) -> None:
@@ -400,8 +424,15 @@ def test_set_state_checks_shapes_and_values(
 def test_channels_must_be_a_positive_int(channels: Any, kind: str, bound: int | None) -> None:
     """channels < 1, > sys.maxsize or not an int raises InputError naming `channels`, the
     accepted range and what came."""
-    rejects(None, lambda: LeuvenModel(MAXWELL, channels=channels), InputError,
-            kind=kind, field="channels", value=channels, bound=bound)  # fmt: skip
+    rejects(
+        None,
+        lambda: LeuvenModel(MAXWELL, channels=channels),
+        InputError,
+        kind=kind,
+        field="channels",
+        value=channels,
+        bound=bound,
+    )
 
 
 BAD_SCHEMES = [
@@ -428,8 +459,16 @@ BAD_SCHEMES = [
 def test_unknown_scheme(call: Callable[[Any], object], scheme: Any, message: str) -> None:
     """An unknown scheme (or one that is not a str) raises InputError naming `scheme`, the two
     accepted names and what came."""
-    rejects(None, lambda: call(scheme), InputError, rf"`scheme` must be 'implicit' or 'explicit', ({message})",
-            kind="invalid_choice", field="scheme", value=scheme, expected=("implicit", "explicit"))  # fmt: skip
+    rejects(
+        None,
+        lambda: call(scheme),
+        InputError,
+        rf"`scheme` must be 'implicit' or 'explicit', ({message})",
+        kind="invalid_choice",
+        field="scheme",
+        value=scheme,
+        expected=("implicit", "explicit"),
+    )
 
 
 @pytest.mark.parametrize("channels", [2**33, 2**62])
@@ -526,7 +565,10 @@ LUGRE_BAD = [
 ]
 #: Where the text is the point: how values are spelled, the subnormal note, what each rule says.
 PARAM_MESSAGES = [
-    ({"Fc": 1e-310}, r"`Fc` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)"),
+    (
+        {"Fc": 1e-310},
+        r"`Fc` must be finite and > 0, got 1e-310 \(a subnormal number: at least 2.2e-308 is needed\)",
+    ),
     ({"Fc": NAN}, r"`Fc` must be finite and > 0, got nan$"),
     ({"Fs": 0.5}, r"`Fs` must be >= `Fc` = 1\.0, got 0\.5$"),
     ({"Fc_neg": 0.8, "Fs_neg": 0.5}, r"`Fs_neg` must be >= `Fc_neg` = 0\.8, got 0\.5$"),
@@ -534,7 +576,7 @@ PARAM_MESSAGES = [
     ({"W": [1.0, 1.0, 1.0]}, r"`W` and `Delta` must have the same length, got 3 and 4$"),
     ({"W": None, "Delta": None}, r"give either `sigma0` .* or `W` \+ `Delta` .*got neither$"),
     ({"Fc": 1 + 0j}, r"`Fc` must be a real number, got \(1\+0j\)$"),
-]  # fmt: skip
+]
 
 
 def _changed(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
@@ -629,8 +671,14 @@ def test_from_json_rejects_invalid_json(text: Any, message: str) -> None:
 def test_params_argument_of_the_wrong_type() -> None:
     """simulate and LeuvenModel reject a params argument that is neither Params nor a mapping."""
     for call in (lambda: leuven_rt.simulate(42, V, DT), lambda: LeuvenModel([1, 2])):
-        rejects(None, call, ParameterError, r"`params` must be a leuven_rt.Params or a mapping, got (int|list)",
-                kind="wrong_type", field="params")  # fmt: skip
+        rejects(
+            None,
+            call,
+            ParameterError,
+            r"`params` must be a leuven_rt.Params or a mapping, got (int|list)",
+            kind="wrong_type",
+            field="params",
+        )
 
 
 # --- divergence -------------------------------------------------------------------------------

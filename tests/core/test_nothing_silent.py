@@ -339,7 +339,7 @@ NUMPY_SCALARS = [
             {"format": "leuven-rt model", "version": np.int64(2), "friction": MAXWELL}
         ),
         id="version",
-    ),  # fmt: skip
+    ),
     pytest.param(lambda: lr.Compensator(MAXWELL, DT, np.str_("both")), id="mode"),  # type: ignore[arg-type]
 ]
 

@@ -27,19 +27,32 @@ def test_a_valid_log_is_accepted() -> None:
 @pytest.mark.parametrize(
     ("changes", "data"),
     [
-        ({"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)},
-         {"kind": "too_few", "value": 50, "bound": 200}),
-        ({"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]},
-         {"kind": "not_finite", "field": "f", "value": np.nan, "sample": 10}),
-        ({"x": np.r_[np.zeros(5), np.inf, np.zeros(SAMPLES - 6)]},
-         {"kind": "not_finite", "field": "x", "value": np.inf, "sample": 5}),
-        ({"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3},
-         {"kind": "not_increasing", "field": "t", "sample": 100, "value": 0.05, "bound": 0.099}),
+        (
+            {"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)},
+            {"kind": "too_few", "value": 50, "bound": 200},
+        ),
+        (
+            {"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]},
+            {"kind": "not_finite", "field": "f", "value": np.nan, "sample": 10},
+        ),
+        (
+            {"x": np.r_[np.zeros(5), np.inf, np.zeros(SAMPLES - 6)]},
+            {"kind": "not_finite", "field": "x", "value": np.inf, "sample": 5},
+        ),
+        (
+            {"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3},
+            {"kind": "not_increasing", "field": "t", "sample": 100, "value": 0.05, "bound": 0.099},
+        ),
         ({"t": np.r_[0.0, np.zeros(SAMPLES - 1)]}, {"kind": "not_increasing", "field": "t", "sample": 1}),
         ({"f": None}, {"kind": "missing_column", "field": "f", "got": ["t", "x"]}),
-        ({"f": np.ones(SAMPLES - 1)},
-         {"kind": "input_length_mismatch", "field": "f", "expected": SAMPLES, "got": SAMPLES - 1}),
-        ({"f": 1e12 * np.ones(SAMPLES)}, {"kind": "implausible_units", "field": "f", "value": 1e12, "bound": 1e7}),
+        (
+            {"f": np.ones(SAMPLES - 1)},
+            {"kind": "input_length_mismatch", "field": "f", "expected": SAMPLES, "got": SAMPLES - 1},
+        ),
+        (
+            {"f": 1e12 * np.ones(SAMPLES)},
+            {"kind": "implausible_units", "field": "f", "value": 1e12, "bound": 1e7},
+        ),
         ({"x": 1e4 * np.linspace(0, 1, SAMPLES)}, {"kind": "implausible_units", "field": "x", "value": 1e4}),
         ({"t": np.arange(SAMPLES) * 1e-9}, {"kind": "implausible_units", "field": "t"}),
         ({"x": np.linspace(0.0, 900.0, SAMPLES)}, {"kind": "implausible_units", "field": "x"}),
@@ -48,7 +61,7 @@ def test_a_valid_log_is_accepted() -> None:
         ({"f": ["a"] * SAMPLES}, {"kind": "not_real", "field": "f"}),
         ({"f": np.ones(SAMPLES) * 1j}, {"kind": "not_real", "field": "f"}),
     ],
-)  # fmt: skip
+)
 def test_bad_columns_are_refused(changes: dict[str, Any], data: dict[str, Any]) -> None:
     """Each refusal names the column (``field``), the rule (``kind``) and what came."""
     for load, cls in ((as_motion_data, DataError), (identify, DataError)):  # the same through identify
@@ -64,17 +77,30 @@ def test_bad_columns_are_refused(changes: dict[str, Any], data: dict[str, Any]) 
 @pytest.mark.parametrize(
     ("changes", "match"),
     [
-        ({"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)},
-         r"too few samples: need at least 200, got 50"),
-        ({"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]}, r"column `f` must be finite, got nan at sample 10"),
-        ({"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3},
-         r"`t` must strictly increase, got t\[99\] = 0\.099 followed by t\[100\] = 0\.05$"),
+        (
+            {"t": np.arange(50) * 1e-3, "x": np.zeros(50), "f": np.zeros(50)},
+            r"too few samples: need at least 200, got 50",
+        ),
+        (
+            {"f": np.r_[np.ones(10), np.nan, np.ones(SAMPLES - 11)]},
+            r"column `f` must be finite, got nan at sample 10",
+        ),
+        (
+            {"t": np.r_[np.arange(100), 50, np.arange(101, SAMPLES)] * 1e-3},
+            r"`t` must strictly increase, got t\[99\] = 0\.099 followed by t\[100\] = 0\.05$",
+        ),
         ({"f": None}, r"missing columns \['f'\]: expected `t` \[s\], `x` \[m\], `f` \[N\]"),
-        ({"f": 1e12 * np.ones(SAMPLES)}, r"column `f` reaches 1e\+12 N, beyond 1e\+07 N: expected SI units \(N\)"),
-        ({"t": np.arange(SAMPLES) * 1e-9}, r"sampling step of `t` must be between .* got 1e-09: is `t` in seconds\?"),
+        (
+            {"f": 1e12 * np.ones(SAMPLES)},
+            r"column `f` reaches 1e\+12 N, beyond 1e\+07 N: expected SI units \(N\)",
+        ),
+        (
+            {"t": np.arange(SAMPLES) * 1e-9},
+            r"sampling step of `t` must be between .* got 1e-09: is `t` in seconds\?",
+        ),
         ({"x": np.linspace(0.0, 900.0, SAMPLES)}, r"`x` moves at up to .* m/s .*expected `x` in m"),
     ],
-)  # fmt: skip
+)
 def test_bad_column_messages_say_what_was_expected(changes: dict[str, Any], match: str) -> None:
     """Where the words are the point: units, the expected columns, the sample and its value."""
     with pytest.raises(DataError, match=match):
