@@ -46,8 +46,8 @@ LOG_HELP = "the log: a .csv with columns t,x,f[,v] (SI units; see --columns) or 
 
 
 def plain_text(text: str) -> str:
-    """A docstring's reStructuredText as the terminal shows it: roles (``:mod:`x```) and literals
-    (````x````) without their markup."""
+    """A docstring's reStructuredText as a terminal shows it: roles such as ``:mod:`` and
+    double-backquoted literals lose their markup, and keep their text."""
     return re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text).replace("``", "")
 
 

@@ -216,12 +216,12 @@ pub enum Number {
 /// Where an error points, spelled as the user wrote it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Location {
-    /// A parameter, an argument or a state member: "Fs", "dt", "channels".
+    /// A parameter, an argument or a state member: `"Fs"`, `"dt"`, `"channels"`.
     Key(&'static str),
-    /// Element `index` of a sequence: "W[2]".
+    /// Element `index` of a sequence: `"W[2]"`.
     Element(&'static str, usize),
     /// Ripple `ripple` of a level, one of its members, and an entry of that member:
-    /// "ripples[0]", "ripples[0].period", "ripples[1].cos[3]".
+    /// `"ripples[0]"`, `"ripples[0].period"`, `"ripples[1].cos[3]"`.
     Ripple {
         /// Index of the ripple.
         ripple: usize,
