@@ -8,6 +8,8 @@ matplotlib writes) and writes them atomically: see :mod:`leuven_rt._output`. A r
 The commands that read a log (``identify``, ``diagnose``, ``predict``) take ``--columns`` (the
 log's own column names) and ``--units`` (linear or rotary), and print each warning of the loader
 (resampling, units that look wrong) as ``leuven-rt <command>: warning: <message>`` on stderr.
+``identify`` and ``diagnose`` report their progress on stderr (:mod:`leuven_rt.progress`: a bar on
+a terminal, timestamped lines otherwise), never on stdout; ``--quiet`` silences it.
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from .errors import (
 
 if TYPE_CHECKING:
     from .data.records import MotionData
+    from .progress import Progress
 
 #: The documented errors (docs/errors.md): each ends a command with its one-line message and
 #: status 2. Anything else is a bug, and keeps its traceback.
@@ -123,13 +126,22 @@ def _demo(arguments: argparse.Namespace) -> int:
     return 0
 
 
+def _progress(arguments: argparse.Namespace) -> Progress:
+    """The progress reporter of a long command: on stderr, nothing with ``--quiet``."""
+    from .progress import Progress
+
+    return Progress(f"leuven-rt {arguments.command}", "off" if arguments.quiet else "auto")
+
+
 def _diagnose(arguments: argparse.Namespace) -> int:
     from ._output import check_outputs
     from .discrepancy import diagnose
 
     if arguments.plot is not None:
         check_outputs([("--plot", arguments.plot, True)], inputs=[arguments.data], force=arguments.force)
-    diagnosis = diagnose(_load(arguments), arguments.baseline, progress=not arguments.json)
+    record = _load(arguments)
+    with _progress(arguments) as report:
+        diagnosis = diagnose(record, arguments.baseline, progress=report)
     if arguments.plot is not None:
         from .discrepancy.plot import plot_diagnosis
 
@@ -164,7 +176,8 @@ def _identify(arguments: argparse.Namespace) -> int:
         outputs.append(("--report", arguments.report, False))
     targets = check_outputs(outputs, inputs=[arguments.data], force=arguments.force)
     record = _load(arguments)
-    result = identify(record, arguments.baseline, progress=not arguments.quiet)
+    with _progress(arguments) as report:
+        result = identify(record, arguments.baseline, progress=report)
     texts = [result.model.to_json() + "\n", result.diagnosis.to_json() + "\n"]
     # Both files or neither: each is written beside its target and renamed once both are complete.
     write_files([(target, text_writer(text)) for target, text in zip(targets, texts, strict=False)])
@@ -253,7 +266,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     identify.add_argument("--report", help="also write the diagnosis report here (JSON)")
     _baseline(identify, "effects the model starts from")
     identify.add_argument("--force", action="store_true", help=FORCE_HELP)
-    identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    identify.add_argument(
+        "--quiet", action="store_true", help="no progress (on stderr) and no summary, only the warnings"
+    )
     _add_log_options(identify)
     identify.set_defaults(run=_identify)
     diagnose = commands.add_parser(
@@ -265,8 +280,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     diagnose.add_argument(
         "--json",
         action="store_true",
-        help="print the JSON report of docs/data-and-reports.md#diagnosis-report (no progress bar)",
+        help="print the JSON report of docs/data-and-reports.md#diagnosis-report (progress stays on stderr)",
     )
+    diagnose.add_argument("--quiet", action="store_true", help="no progress (on stderr)")
     diagnose.add_argument(
         "--plot", help="write the residual figure here (.png, .pdf, .svg, … : any format matplotlib writes)"
     )

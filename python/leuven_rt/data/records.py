@@ -11,16 +11,22 @@ median steps (and than :data:`MIN_GAP`) is a gap in the log and is refused, sinc
 across it would invent the motion in between.
 
 Logs as users have them: ``columns`` maps the file's own column names onto ``t``, ``x``, ``f``,
-``v``; header names may carry spaces, and empty trailing columns (rows ending in ``,,``) are
-dropped. Values that load but look like other units (time in milliseconds, a linear stroke in
-millimetres, an angle in degrees) give a :class:`UnitsWarning`. Every warning of the loader is
-also kept, as text, in :attr:`MotionData.notes`, so that reports can carry it.
+``v`` (one column per role); the separator (``,``, ``;`` or tab) is sniffed, names and numbers
+may be quoted, a ``;`` file may write decimal commas, header names may carry spaces, and empty
+trailing columns (rows ending in ``,,``) are dropped; a missing header line and a units row under
+the header are refused, naming the cause. A logged ``v`` whose sign is the opposite of the
+position's own motion is refused. Values that load but look like other units (time in
+milliseconds, a linear stroke in millimetres, an angle in degrees, a ``v`` in other units than
+``x`` per ``t``) give a :class:`UnitsWarning`. Every warning of the loader is also kept, as text,
+in :attr:`MotionData.notes`, so that reports can carry it.
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
@@ -52,11 +58,37 @@ MAX_VELOCITY = 1e3  # m/s
 STEP_RANGE = (1e-7, 1.0)  # s
 #: Plausibility warnings (UnitsWarning): a linear stroke beyond this looks like millimetres [m];
 #: an angle beyond this looks like degrees [rad]; a record longer than this looks like time in
-#: milliseconds [s] (as does a median step of at least MS_STEP with whole-number steps).
+#: milliseconds [s].
 MAX_LINEAR_STROKE = 5.0
 MAX_ANGLE = 100.0
 MAX_DURATION = 86_400.0
-MS_STEP = 0.5
+#: Time in milliseconds read as seconds (docs/data-and-reports.md#time-unit) makes the sampling
+#: and the motion 1000 times slower. Friction is logged at 50 Hz or faster (robot controllers: 1
+#: to 20 ms), so a median step of at least MS_STEP [s] (25 Hz) is a slow sampling; it is taken
+#: for milliseconds when the motion is slow at that rate too: whole-number steps (a millisecond
+#: clock), or a position that takes MS_TRAVEL [s] or more to travel its range (duration x range
+#: / total travel: half the period of a sine; noise and quantisation only shorten it). Neither
+#: depends on the units of x, so a rotary log read as linear is judged the same.
+MS_STEP = 0.04
+MS_TRAVEL = 20.0
+#: A logged ``v`` against the position's own motion (docs/data-and-reports.md#measured-data): the
+#: displacement of ``x`` over windows of the record against the integral of ``v`` over the same
+#: windows, on the windows where ``x`` moves by at least MOVING times its resolution (its
+#: smallest step, or its noise when larger), so that encoder quantisation and noise do not count.
+#: The windows are the record split in VELOCITY_WINDOWS, made longer (doubled) until at least
+#: MIN_MOVING_WINDOWS of them move. More than MAX_SIGN_DISAGREEMENT of the moving windows of the
+#: opposite sign is refused (v = -dx/dt); a median ratio of the two beyond VELOCITY_RATIO (either
+#: way) is warned of: another unit (mm/s against m, deg/s against rad, rev/s: 2π, time in ms).
+VELOCITY_WINDOWS = 1000
+NOISE_SAMPLES = 100_000
+MOVING = 4.0
+MIN_MOVING_WINDOWS = 20
+MAX_SIGN_DISAGREEMENT = 0.5
+VELOCITY_RATIO = 4.0
+#: The separators a CSV log may use, sniffed (csv.Sniffer) from its header and the lines after it;
+#: a ``;`` file may write decimal commas.
+SEPARATORS = ",;\t"
+SNIFFED_LINES = 20
 #: The names of a log's columns, in order; ``v`` is optional.
 ROLES = ("t", "x", "f", "v")
 
@@ -165,21 +197,24 @@ def _column(name: str, values: ArrayLike) -> FloatArray:
     return array
 
 
-def check_columns(columns: Mapping[str, ArrayLike], units: Units = "linear") -> dict[str, FloatArray]:
+def check_columns(
+    columns: Mapping[str, ArrayLike], units: Units = "linear", names: Mapping[str, str] | None = None
+) -> dict[str, FloatArray]:
     """Checks and converts the columns ``t``, ``x``, ``f`` (and ``v`` when present); ``units``
-    names the units in the messages.
+    names the units in the messages, ``names`` the file's name of each column.
 
     Refuses with :class:`DataError`: missing columns; columns of different lengths; fewer than
     :data:`MIN_SAMPLES` samples; NaN or infinite values (naming the first); time that does not
     strictly increase; a step outside :data:`STEP_RANGE`; forces, positions or velocities beyond
-    the plausibility bounds of SI units; a position that never changes.
+    the plausibility bounds of SI units; a position that never changes; a ``v`` whose sign is the
+    opposite of the position's motion (:func:`velocity_agreement`).
     """
-    names = unit_names(units)
+    si = unit_names(units)
     missing = [name for name in ("t", "x", "f") if name not in columns]
     if missing:
         raise DataError(
-            f"missing columns {missing}: expected `t` [s], `x` [{names.position}], `f` [{names.force}] "
-            f"and optionally `v` [{names.velocity}], got columns {sorted(columns)}",
+            f"missing columns {missing}: expected `t` [s], `x` [{si.position}], `f` [{si.force}] "
+            f"and optionally `v` [{si.velocity}], got columns {sorted(columns)}",
             kind="missing_column",
             field=missing[0],
             expected=["t", "x", "f"],
@@ -238,8 +273,8 @@ def check_columns(columns: Mapping[str, ArrayLike], units: Units = "linear") -> 
             value=step,
             bound=STEP_RANGE[0] if step < STEP_RANGE[0] else STEP_RANGE[1],
         )
-    bounds = {"f": (MAX_FORCE, names.force), "x": (MAX_POSITION, names.position),
-              "v": (MAX_VELOCITY, names.velocity)}  # fmt: skip
+    bounds = {"f": (MAX_FORCE, si.force), "x": (MAX_POSITION, si.position),
+              "v": (MAX_VELOCITY, si.velocity)}  # fmt: skip
     for name, (bound, unit) in bounds.items():
         if name in arrays:
             largest = float(np.max(np.abs(arrays[name])))
@@ -255,8 +290,8 @@ def check_columns(columns: Mapping[str, ArrayLike], units: Units = "linear") -> 
     speed = float(np.max(np.abs(np.diff(arrays["x"]))) / step)
     if speed > MAX_VELOCITY:
         raise DataError(
-            f"`x` moves at up to {speed:g} {names.velocity} between samples, beyond {MAX_VELOCITY:g} "
-            f"{names.velocity}: expected `x` in {names.position} and `t` in s",
+            f"`x` moves at up to {speed:g} {si.velocity} between samples, beyond {MAX_VELOCITY:g} "
+            f"{si.velocity}: expected `x` in {si.position} and `t` in s",
             kind="implausible_units",
             field="x",
             value=speed,
@@ -266,7 +301,77 @@ def check_columns(columns: Mapping[str, ArrayLike], units: Units = "linear") -> 
         raise DataError(
             "`x` never changes: there is no motion to identify friction from", kind="no_motion", field="x"
         )
+    if "v" in arrays:
+        agreement = velocity_agreement(arrays["t"], arrays["x"], arrays["v"])
+        if agreement is not None and agreement.opposite > MAX_SIGN_DISAGREEMENT:
+            raise DataError(
+                f"{_label('v', names)} has the opposite sign of the motion of `x` on "
+                f"{agreement.opposite:.0%} of the moving samples ({agreement.moving} windows of "
+                f"{agreement.window} samples): expected v = dx/dt; is it -dx/dt? "
+                "(negate it, or leave it out)",
+                kind="wrong_sign",
+                field="v",
+                value=agreement.opposite,
+                bound=MAX_SIGN_DISAGREEMENT,
+            )
     return arrays
+
+
+def _label(role: str, names: Mapping[str, str] | None) -> str:
+    """``column `role```, with the file's name of the column when it has another."""
+    source = (names or {}).get(role, role)
+    return f"column `{role}`" if source == role else f"column `{role}` (`{source}` in the file)"
+
+
+@dataclass(frozen=True)
+class VelocityAgreement:
+    """How a logged ``v`` agrees with the motion of ``x`` (:func:`velocity_agreement`)."""
+
+    opposite: float
+    """The share of the moving windows on which the integral of ``v`` has the opposite sign of
+    the displacement of ``x``."""
+    ratio: float
+    """The median of (integral of ``v``) / (displacement of ``x``) over the other moving windows:
+    1 for v = dx/dt (NaN when every one is of the opposite sign)."""
+    moving: int
+    """The windows on which ``x`` moves (by at least :data:`MOVING` resolutions)."""
+    window: int
+    """Samples per window."""
+
+
+def velocity_agreement(t: FloatArray, x: FloatArray, v: FloatArray) -> VelocityAgreement | None:
+    """``v`` compared with the position's own motion over windows of the record (the constants'
+    documentation: :data:`VELOCITY_WINDOWS`), or None when too few windows move to tell. The
+    displacement ``v`` gives over a window is its integral (trapezoidal, at the stamps ``t``), so
+    that the comparison holds across reversals and non-uniform stamps alike."""
+    dx = np.diff(x)
+    steps = np.abs(dx)
+    smallest = float(np.min(steps[steps > 0]))  # the caller has refused a position that never changes
+    # The noise of x from its second differences (a smooth motion's are tiny): 1.4826·MAD/√6, read
+    # on at most NOISE_SAMPLES of them, spread over the record (a statistic needs no more).
+    at = np.arange(0, dx.size - 1, max(1, (dx.size - 1) // NOISE_SAMPLES))
+    second = dx[at + 1] - dx[at]
+    noise = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / np.sqrt(6.0)
+    resolution = max(smallest, noise)
+    integral = np.concatenate(([0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))))
+    window = max(1, x.size // VELOCITY_WINDOWS)
+    while x.size // window >= 2:
+        ends = np.arange(0, x.size, window)
+        displacement, said = np.diff(x[ends]), np.diff(integral[ends])
+        moving = np.abs(displacement) >= MOVING * resolution
+        count = int(np.count_nonzero(moving))
+        if count >= MIN_MOVING_WINDOWS:
+            displacement, said = displacement[moving], said[moving]
+            opposite = said * displacement < 0
+            ratios = said[~opposite] / displacement[~opposite]
+            return VelocityAgreement(
+                opposite=float(np.mean(opposite)),
+                ratio=float(np.median(ratios)) if ratios.size else float("nan"),
+                moving=count,
+                window=window,
+            )
+        window *= 2
+    return None
 
 
 def is_uniform(t: FloatArray) -> bool:
@@ -314,46 +419,64 @@ def plausibility_notes(
     columns: Mapping[str, FloatArray], units: Units, names: Mapping[str, str] | None = None
 ) -> list[str]:
     """Texts of the :class:`UnitsWarning` for checked columns that look like other units (time
-    in milliseconds, a linear stroke in millimetres, an angle in degrees); ``names`` gives the
-    file's name of each column, for the message. Warns with each; the data is left as it is."""
-    names = names or {}
-
-    def label(role: str) -> str:
-        source = names.get(role, role)
-        return f"column `{role}`" if source == role else f"column `{role}` (`{source}` in the file)"
-
+    in milliseconds, a linear stroke in millimetres, an angle in degrees, a ``v`` in other units
+    than ``x`` per ``t``); ``names`` gives the file's name of each column, for the message. Warns
+    with each; the data is left as it is."""
     notes: list[str] = []
-    t = columns["t"]
+    t, x = columns["t"], columns["x"]
     steps = np.diff(t)
     step = float(np.median(steps))
     duration = float(t[-1] - t[0])
-    if step >= MS_STEP and bool(np.all(steps == np.round(steps))):
+    if step >= MS_STEP:  # a slow sampling: milliseconds when the motion is slow at this rate too
+        travel = duration * float(np.ptp(x)) / float(np.sum(np.abs(np.diff(x))))
+        if bool(np.all(steps == np.round(steps))):
+            notes.append(
+                f"{_label('t', names)} steps by whole numbers (median step {step:g}): this looks like "
+                "time in milliseconds; expected seconds"
+            )
+        elif travel >= MS_TRAVEL:
+            notes.append(
+                f"{_label('t', names)} steps by {step:g} s ({1.0 / step:.3g} Hz) and `x` takes "
+                f"{travel:.3g} s to travel its range: both slow for a friction log in seconds, while in "
+                f"milliseconds it is a {1e3 / step:.3g} Hz log whose travel takes {travel / 1e3:.3g} s: "
+                "this looks like time in milliseconds; expected seconds"
+            )
+    if not notes and duration > MAX_DURATION:
         notes.append(
-            f"{label('t')} steps by whole numbers (median step {step:g}): this looks like time in "
-            "milliseconds; expected seconds"
+            f"{_label('t', names)} spans {duration:g} s, more than a day: this looks like time in "
+            "milliseconds (or a clock of another unit); expected seconds"
         )
-    elif duration > MAX_DURATION:
-        notes.append(
-            f"{label('t')} spans {duration:g} s, more than a day: this looks like time in milliseconds "
-            "(or a clock of another unit); expected seconds"
-        )
-    x = columns["x"]
+    unit = unit_names(units)
     if units == "linear" and float(np.ptp(x)) > MAX_LINEAR_STROKE:
         notes.append(
-            f"{label('x')} spans {float(np.ptp(x)):g} m, a linear stroke beyond {MAX_LINEAR_STROKE:g} m: "
-            "this looks like millimetres; expected metres (or units='rotary' for an angle in rad)"
+            f"{_label('x', names)} spans {float(np.ptp(x)):g} m, a linear stroke beyond "
+            f"{MAX_LINEAR_STROKE:g} m: this looks like millimetres; expected metres (or units='rotary' "
+            "for an angle in rad)"
         )
     if units == "rotary" and float(np.max(np.abs(x))) > MAX_ANGLE:
         notes.append(
-            f"{label('x')} reaches {float(np.max(np.abs(x))):g} rad, beyond ±{MAX_ANGLE:g} rad: this looks "
-            "like degrees; expected radians"
+            f"{_label('x', names)} reaches {float(np.max(np.abs(x))):g} rad, beyond ±{MAX_ANGLE:g} rad: this "
+            "looks like degrees; expected radians"
+        )
+    v = columns.get("v")
+    agreement = None if v is None else velocity_agreement(t, x, v)
+    if (
+        agreement is not None
+        and agreement.opposite <= MAX_SIGN_DISAGREEMENT
+        and not (1.0 / VELOCITY_RATIO <= agreement.ratio <= VELOCITY_RATIO)
+    ):
+        notes.append(
+            f"{_label('v', names)} is {agreement.ratio:.3g} times the velocity of `x` over `t` (the median "
+            f"over {agreement.moving} moving windows of {agreement.window} samples): this looks like other "
+            f"units than `x` per `t` (mm/s with x in m, deg/s with x in rad, or t in ms); expected "
+            f"{unit.velocity} with x in {unit.position} and t in s"
         )
     for note in notes:
         warnings.warn(note, UnitsWarning, stacklevel=3)
     return notes
 
 
-def _csv_values(cells: list[str]) -> FloatArray:
+def _csv_values(cells: Sequence[str]) -> FloatArray:
     """One column of text cells as floats: an empty or non-numeric cell becomes NaN, which the
     checks refuse naming the sample when the column is used, and which is harmless when not."""
     try:
@@ -368,11 +491,38 @@ def _csv_values(cells: list[str]) -> FloatArray:
         return values
 
 
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def _dialect(lines: list[str]) -> tuple[str, str]:
+    """The separator and quote character of a CSV log, sniffed from its header and the lines after
+    it, or from the header alone when no separator fits every one of those (a ragged line among
+    them); ``,`` when nothing fits (a file of one column). Tab and ``;`` are tried before ``,``:
+    the decimal commas of a ``;`` file are as regular as its separators once a header line is
+    missing, and the sniffer would prefer the comma."""
+    for sample in (lines, lines[:1]):
+        for separator in SEPARATORS[::-1]:
+            try:
+                sniffed = csv.Sniffer().sniff("\n".join(sample), delimiters=separator)
+            except csv.Error:  # this separator does not fit every line
+                continue
+            return sniffed.delimiter, sniffed.quotechar or '"'
+    return ",", '"'
+
+
 def load_csv(path: Path) -> dict[str, FloatArray]:
     """Columns of a CSV file with a header line (docs/data-and-reports.md#measured-data: ``t,x,f[,v]``),
     UTF-8 (a byte-order mark is allowed), by their names in the header, spaces around them
-    stripped. Unnamed columns that hold nothing (rows ending in ``,,``) are dropped; a row with
-    more or fewer cells than the header otherwise is refused."""
+    stripped. The separator (``,``, ``;`` or tab) is sniffed; names and numbers may be quoted; in
+    a ``;`` file a decimal comma is read as a decimal point. Unnamed columns that hold nothing
+    (rows ending in ``,,``) are dropped; a row with more or fewer cells than the header otherwise
+    is refused, and so are a first line of numbers (no header) and a line of text among the
+    numbers (a units row under the header), each naming the line."""
     expected = (
         f"a CSV file in UTF-8 with a header line `t,x,f[,v]` and at least {MIN_SAMPLES} rows of numbers"
     )
@@ -400,8 +550,12 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
             value=str(path),
             index=text.index("\0"),
         )
-    lines = [line for line in text.splitlines() if line.strip()]
-    header = [name.strip() for name in lines[0].split(",")]
+    lines = text.splitlines()
+    first = next(index for index, line in enumerate(lines) if line.strip())
+    sample = [line for line in lines[first : first + 4 * SNIFFED_LINES] if line.strip()][: SNIFFED_LINES + 1]
+    separator, quote = _dialect(sample)
+    header = [name.strip() for name in next(csv.reader(sample[:1], delimiter=separator, quotechar=quote,
+                                                        skipinitialspace=True))]  # fmt: skip
     if not any(header):
         raise DataError(
             f"{path} must start with a header line naming the columns, e.g. `t,x,f`",
@@ -409,6 +563,15 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
             value=str(path),
         )
     named = [name for name in header if name]
+    if all(_is_number(name.replace(",", ".") if separator == ";" else name) for name in named):
+        raise DataError(
+            f"cannot read {path} as {expected}: line {first + 1} holds numbers "
+            f"({lines[first].strip()!r:.60}), not column names: the header line is missing (add one, "
+            "e.g. `t,x,f`)",
+            kind="no_header",
+            value=str(path),
+            index=first + 1,
+        )
     repeated = sorted({name for name in named if named.count(name) > 1})
     if repeated:
         raise DataError(
@@ -416,10 +579,53 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
             kind="repeated",
             field=repeated[0],
         )
+    body = text[text.index(lines[first]) + len(lines[first]) :]
+    if separator == ";":  # the separator of locales that write a decimal comma
+        body = body.replace(",", ".")
+    if not body.strip():  # header only: empty columns, which the checks refuse as too few samples
+        return {name: np.empty(0) for name in named}
+    table = _numbers(body, separator, quote, header)
+    if table is None:
+        return _cells(path, expected, lines[first + 1 :], first + 2, header, separator, quote)
+    return {name: np.ascontiguousarray(table[:, index]) for index, name in enumerate(named)}
+
+
+def _numbers(body: str, separator: str, quote: str, header: list[str]) -> FloatArray | None:
+    """The named columns of the rows of ``body`` as a (rows, named) array by numpy's C reader, or
+    None when some cell is not a number or a row has another width than the header
+    (:func:`_cells` then reads it cell by cell, and says which)."""
+    used = [index for index, name in enumerate(header) if name]
+    every = len(used) == len(header)  # then numpy checks that each row has as many cells as the first
+    try:
+        table = np.loadtxt(
+            io.StringIO(body, newline=None), delimiter=separator, quotechar=quote, comments=None,
+            dtype=np.float64, ndmin=2, usecols=None if every else used,
+        )  # fmt: skip
+    except ValueError:
+        return None
+    if every:
+        return table if table.shape[1] == len(header) else None
+    # Unnamed columns (rows ending in ",,") are not read, and numpy checks no width then.
+    cells = np.fromiter(
+        (line.count(separator) + 1 for line in body.splitlines() if line.strip()), dtype=np.int64
+    )
+    return table if bool(np.all(cells == len(header))) else None
+
+
+def _cells(
+    path: Path, expected: str, lines: list[str], start: int, header: list[str], separator: str, quote: str
+) -> dict[str, FloatArray]:
+    """The columns of the rows ``lines`` (the first is line ``start`` of the file) read cell by cell
+    (csv's reader): empty trailing cells dropped, a row of another width refused, a row of text
+    refused, a cell that is not a number NaN."""
+    numbered = [(number, line) for number, line in enumerate(lines, start=start) if line.strip()]
+    if separator == ";":
+        numbered = [(number, line.replace(",", ".")) for number, line in numbered]
     width = len(header)
-    cells: list[list[str]] = []
-    for number, line in enumerate(lines[1:], start=2):
-        row = line.split(",")
+    rows: list[list[str]] = []
+    reader = csv.reader((line for _, line in numbered), delimiter=separator, quotechar=quote,
+                        skipinitialspace=True)  # fmt: skip
+    for (number, _), row in zip(numbered, reader, strict=True):
         if len(row) > width and not "".join(row[width:]).strip():
             row = row[:width]  # empty trailing cells: nothing there to read
         if len(row) != width:
@@ -432,10 +638,31 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
                 expected=width,
                 got=len(row),
             )
-        cells.append(row)
-    # Header only: empty columns, which the checks refuse as too few samples.
-    columns = list(zip(*cells, strict=True)) if cells else [() for _ in header]
-    return {name: _csv_values(list(column)) for name, column in zip(header, columns, strict=True) if name}
+        rows.append(row)
+    used = [index for index, name in enumerate(header) if name]
+    transposed = list(zip(*rows, strict=True))
+    columns = {header[index]: _csv_values(transposed[index]) for index in used}
+    # A row with text in every named cell is no row of numbers: a units row under the header, or a
+    # header repeated where two logs were joined. Rows of NaN are left to the checks.
+    unread = np.flatnonzero(np.all([np.isnan(values) for values in columns.values()], axis=0))
+    for index in unread:
+        cells = [rows[index][column].strip() for column in used]
+        if any(cells) and not any(_is_number(cell) for cell in cells if cell):
+            number, line = numbered[index]
+            cause = (
+                "a units row under the header, it seems; remove it (units are not read from the file: "
+                "t must be in s, the others in SI units)"
+                if index == 0
+                else "a header repeated among the rows (logs joined?), it seems; remove it"
+            )
+            raise DataError(
+                f"cannot read {path} as {expected}: line {number} holds text, not numbers "
+                f"({line.strip()!r:.60}): {cause}",
+                kind="not_real",
+                value=str(path),
+                index=number,
+            )
+    return columns
 
 
 def load_emps(path: Path) -> dict[str, FloatArray]:
@@ -526,7 +753,21 @@ def check_column_map(columns: Any) -> dict[str, str]:
                 field=f"columns[{key!r}]",
                 value=name,
             )
-    return {key: name.strip() for key, name in columns.items()}
+    mapping = {key: name.strip() for key, name in columns.items()}
+    roles: dict[str, list[str]] = {}
+    for key, name in mapping.items():
+        roles.setdefault(name, []).append(key)
+    for name, keys in roles.items():
+        if len(keys) > 1:
+            both = " and ".join(f"`{key}`" for key in keys)
+            raise DataError(
+                f"`columns` maps {both} to the same column `{name}`: each of t, x, f, v needs a column "
+                "of its own",
+                kind="repeated",
+                field="columns",
+                value=name,
+            )
+    return mapping
 
 
 def parse_column_map(text: str) -> dict[str, str]:
@@ -570,11 +811,20 @@ def select_columns(raw: Mapping[str, Any], columns: Mapping[str, str], source: s
             expected=sorted(columns.values()),
             got=[str(column) for column in raw],
         )
-    taken = {name for name in columns.values()}
+    taken = {name: key for key, name in columns.items()}
     selected = {key: raw[name] for key, name in columns.items()}
     for role in ROLES:
-        if role not in selected and role in raw and role not in taken:
-            selected[role] = raw[role]
+        if role not in selected and role in raw:
+            if role in taken and role != "v":  # v is optional: the column stays with its mapped role
+                raise DataError(
+                    f"`columns` maps `{taken[role]}` to the column `{role}`, which `{role}` would take too: "
+                    f"each of t, x, f, v needs a column of its own (map `{role}` to another column)",
+                    kind="repeated",
+                    field="columns",
+                    value=role,
+                )
+            if role not in taken:
+                selected[role] = raw[role]
     return selected
 
 
@@ -637,11 +887,13 @@ def as_motion_data(
             if mapping is None
             else select_columns(raw, mapping, "the log" if source == "arrays" else "it")
         )
-        checked: dict[str, Any] = check_columns(selected, units=kind)
+        checked: dict[str, Any] = check_columns(selected, units=kind, names=mapping)
         if not is_uniform(checked["t"]):
             checked, note = resample_uniform(checked)
             notes.append(note)
-            checked = check_columns(checked, units=kind)  # new samples on a new grid: checked once
+            checked = check_columns(
+                checked, units=kind, names=mapping
+            )  # new samples on a new grid: checked once
         notes += plausibility_notes(checked, kind, mapping)
     except DataError as error:
         if source == "arrays":

@@ -19,16 +19,15 @@ import time
 from typing import Any, cast
 
 import numpy as np
-from tqdm import tqdm
 
 from .._checks import real_number
 from .._core import MAX_ELEMENTS
-from .._extras import progress_wanted
 from .._typing import BoolArray
 from ..data.records import DataLike, as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
 from ..data.signals import Derivatives, estimate_derivatives, noise_floor
 from ..errors import DataError, InputError, shown
+from ..progress import Progress, reporting
 from ..simulation import simulate_position
 from .presliding import CANDIDATE_ELEMENTS, fit_presliding
 from .refine import WEIGHT_MARGIN, SimulationError, fit_transition, model_params, refine_jointly
@@ -123,7 +122,7 @@ def identify_staged(
     cutoff: float | None = None,
     held_out: float = 0.25,
     max_evaluations: int = 30,
-    progress: bool = False,
+    progress: bool | Progress = False,
 ) -> IdentificationResult:
     """Fits the modified Leuven model to a log of position and force.
 
@@ -133,8 +132,8 @@ def identify_staged(
     ``asymmetric``: fit ``Fc_neg``, ``Fs_neg`` too. ``cutoff``: the position filter's cutoff [Hz]
     (default a tenth of the Nyquist frequency). ``held_out``: the share of the record, at its end,
     kept for scoring. ``max_evaluations``: the budget of each simulation-error stage (least-squares
-    function evaluations, Jacobians not counted). ``progress``: a progress bar on stderr for fits
-    that take more than a second.
+    function evaluations, Jacobians not counted). ``progress``: report the stages on stderr (True:
+    a bar on a terminal, lines otherwise; or a :class:`~leuven_rt.progress.Progress`).
 
     Returns the parameters and an :class:`IdentificationReport`. Bad data raises
     :class:`DataError` (an :class:`InputError`).
@@ -144,7 +143,7 @@ def identify_staged(
     record = as_motion_data(data)
     split = round(record.samples * (1.0 - held_out))
     training = record.slice(0, split)
-    derivatives = estimate_derivatives(training, None if cutoff is None else real_number(cutoff, "cutoff"))
+    derivatives = estimate_derivatives(training, cutoff)
     noise = noise_floor(training.f)
     warnings: list[str] = []
     stages: list[Stage] = []
@@ -175,15 +174,17 @@ def identify_staged(
 
     sigma1 = max(presliding.viscous - sliding.sigma2, 0.0)
     start = model_params({**sliding.params(), "n": 2.0, "sigma1": sigma1}, presliding.W, presliding.Delta)
-    shown = progress_wanted(progress)
-    with tqdm(desc="identify", unit=" simulations", delay=1.0, disable=not shown, leave=False) as bar:
-        objective = SimulationError(derivatives.x, training.dt, training.f, np.ones(split, dtype=bool),
-                                    lambda: bar.update(1))  # fmt: skip
-        bar.set_postfix_str("sigma1, n")
+    with reporting(progress, "identify_staged") as reporter:
+        stage = ["transition"]  # the stage the simulations count towards
+
+        def tick() -> None:
+            reporter.stage(stage[0], objective.evaluations, None, "simulations")
+
+        objective = SimulationError(derivatives.x, training.dt, training.f, np.ones(split, dtype=bool), tick)
         transition = fit_transition(start, objective, max_evaluations)
         stages.append(Stage("transition", transition.rms, split, transition.condition,
                             {"sigma1": transition.params.sigma1, "n": transition.params.n}))  # fmt: skip
-        bar.set_postfix_str("all parameters")
+        stage[0] = "joint"
         joint = refine_jointly(transition.params, objective, max_evaluations)
         stages.append(Stage("joint", joint.rms, split, joint.condition,
                             {"simulations": objective.evaluations}))  # fmt: skip
