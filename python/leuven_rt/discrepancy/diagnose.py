@@ -23,7 +23,7 @@ from threadpoolctl import threadpool_limits
 from .._typing import FloatArray
 from ..data.records import DataLike, MotionData, as_motion_data
 from ..data.signals import noise_floor
-from ..errors import InputError
+from ..errors import InputError, shown
 from ..progress import Progress, reporting
 from ..units import unit_names
 from .drive import Drive
@@ -97,7 +97,12 @@ def diagnose(
     if settings is None:
         settings = Settings()
     elif not isinstance(settings, Settings):
-        raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
+        raise InputError(
+            f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {shown(settings)!r:.80}",
+            kind="wrong_type",
+            field="settings",
+            value=settings,
+        )
     record = as_motion_data(data)
     with reporting(progress, "diagnose") as report:
         return _diagnose(record, effects, settings, report)

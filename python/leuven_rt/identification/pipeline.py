@@ -26,7 +26,7 @@ from .._typing import BoolArray
 from ..data.records import DataLike, as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
 from ..data.signals import Derivatives, estimate_derivatives, noise_floor
-from ..errors import DataError, InputError
+from ..errors import DataError, InputError, shown
 from ..progress import Progress, reporting
 from ..simulation import simulate_position
 from .presliding import CANDIDATE_ELEMENTS, fit_presliding
@@ -48,26 +48,52 @@ def _check_options(elements: Any, held_out: Any, max_evaluations: Any, cutoff: A
     if cutoff is not None:
         real_number(cutoff, "cutoff")  # its range is the filter's to check, against the data's rate
     if not isinstance(asymmetric, (bool, np.bool_)):
-        raise InputError(f"`asymmetric` must be True or False, got {asymmetric!r:.80}")
+        raise InputError(
+            f"`asymmetric` must be True or False, got {shown(asymmetric)!r:.80}",
+            kind="wrong_type",
+            field="asymmetric",
+            value=asymmetric,
+        )
     if elements is not None and (
         isinstance(elements, bool)
         or not isinstance(elements, numbers.Integral)
         or not 1 <= int(elements) <= MAX_ELEMENTS  # int() is exact for any Integral
     ):
-        raise InputError(f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {elements!r}")
+        integer = isinstance(elements, numbers.Integral) and not isinstance(elements, bool)
+        raise InputError(
+            f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {shown(elements)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="elements",
+            value=elements,
+            bound=(1 if int(elements) < 1 else MAX_ELEMENTS) if integer else None,
+        )
     # numbers.Real declares no typed comparisons: compared as a float for the checker only.
     if (
         isinstance(held_out, bool)
         or not isinstance(held_out, numbers.Real)
         or not 0.0 <= cast(float, held_out) <= 0.5
     ):
-        raise InputError(f"`held_out` must be a fraction in [0, 0.5], got {held_out!r}")
+        real = isinstance(held_out, numbers.Real) and not isinstance(held_out, bool)
+        raise InputError(
+            f"`held_out` must be a fraction in [0, 0.5], got {shown(held_out)!r}",
+            kind="out_of_range" if real else "not_real",
+            field="held_out",
+            value=held_out,
+            bound=(0.0 if cast(float, held_out) < 0.0 else 0.5) if real else None,
+        )
     if (
         isinstance(max_evaluations, bool)
         or not isinstance(max_evaluations, numbers.Integral)
         or max_evaluations < 3
     ):
-        raise InputError(f"`max_evaluations` must be an integer >= 3, got {max_evaluations!r}")
+        integer = isinstance(max_evaluations, numbers.Integral) and not isinstance(max_evaluations, bool)
+        raise InputError(
+            f"`max_evaluations` must be an integer >= 3, got {shown(max_evaluations)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="max_evaluations",
+            value=max_evaluations,
+            bound=3 if integer else None,
+        )
 
 
 def _presliding_range(segments: Segments, force: np.ndarray, noise: float, warnings: list[str]) -> float:
@@ -79,7 +105,9 @@ def _presliding_range(segments: Segments, force: np.ndarray, noise: float, warni
     if not lengths.size:
         raise DataError(
             "the presliding range cannot be estimated: after no reversal (nor after the start) does the "
-            "force settle on a sliding level; the data must include moves long enough to slide"
+            "force settle on a sliding level; the data must include moves long enough to slide",
+            kind="not_identifiable",
+            field="f",
         )
     warnings.append("presliding range estimated from the initial loading from rest only")
     # From rest the force rises by g, not 2g: the transition covers about half the range.
