@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 import warnings
 from collections.abc import Sequence
@@ -45,6 +46,33 @@ FORCE_HELP = "replace output files that exist (an input file is never overwritte
 
 
 LOG_HELP = "the log: a .csv with columns t,x,f[,v] (SI units; see --columns) or an EMPS .mat file"
+
+
+def plain_text(text: str) -> str:
+    """A docstring's reStructuredText as a terminal shows it: roles such as ``:mod:`` and
+    double-backquoted literals lose their markup, and keep their text."""
+    return re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text).replace("``", "")
+
+
+class EffectNames:
+    """The names of the effect catalogue, for the ``--baseline`` help (argparse's ``%(effects)s``).
+    Looked up when the help is printed, not when the parser is built: the catalogue needs the
+    ``analysis`` extra, which ``leuven-rt --version`` and the lean core do not."""
+
+    def __str__(self) -> str:
+        try:
+            from .discrepancy.effects import CATALOGUE
+        except ImportError:  # the analysis extra is not installed
+            return "the effects of docs/effects.md (with leuven-rt[analysis])"
+        return ", ".join(CATALOGUE)
+
+
+def _baseline(parser: argparse.ArgumentParser, what: str) -> None:
+    """The ``--baseline`` option: ``what`` the effects are, and the names it takes."""
+    option = parser.add_argument(
+        "--baseline", default="coulomb,viscous", help=f"{what} (comma-separated, among %(effects)s)"
+    )
+    vars(option)["effects"] = EffectNames()  # argparse expands %(name)s from the option's attributes
 
 
 def _add_log_options(parser: argparse.ArgumentParser, units: str | None = "linear") -> None:
@@ -173,7 +201,11 @@ def _predict(arguments: argparse.Namespace) -> int:
     model = ModelFile.load(arguments.model)
     if arguments.units is not None and arguments.units != model.units:
         raise InputError(
-            f"`--units` is {arguments.units!r}, but the model file {arguments.model} is {model.units!r}"
+            f"`--units` is {arguments.units!r}, but the model file {arguments.model} is {model.units!r}",
+            kind="units_mismatch",
+            field="--units",
+            value=arguments.units,
+            expected=model.units,
         )
     arguments.units = model.units
     prediction = predict(model, _load(arguments), cutoff=arguments.cutoff)
@@ -198,7 +230,7 @@ def _control(arguments: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``leuven-rt`` command."""
-    parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
+    parser = argparse.ArgumentParser(prog="leuven-rt", description=plain_text(__doc__ or ""))
     parser.add_argument("--version", action="version", version=f"leuven-rt {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
@@ -231,9 +263,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         "-o", "--output", required=True, help="where to write the model file (JSON, docs/data-and-reports.md)"
     )
     identify.add_argument("--report", help="also write the diagnosis report here (JSON)")
-    identify.add_argument(
-        "--baseline", default="coulomb,viscous", help="effects the model starts from (comma-separated)"
-    )
+    _baseline(identify, "effects the model starts from")
     identify.add_argument("--force", action="store_true", help=FORCE_HELP)
     identify.add_argument(
         "--quiet", action="store_true", help="no progress (on stderr) and no summary, only the warnings"
@@ -245,9 +275,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         help="name the catalogue effects a friction model misses in a log, and how much each helps",
     )
     diagnose.add_argument("data", help=LOG_HELP)
-    diagnose.add_argument(
-        "--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)"
-    )
+    _baseline(diagnose, "effects already in the model")
     diagnose.add_argument(
         "--json",
         action="store_true",

@@ -174,7 +174,11 @@ def predict(
     kind = chosen.units if units is None else check_units(units, error=DataError)
     if kind != chosen.units:
         raise DataError(
-            f"`units` is {kind!r}, but the model is {chosen.units!r}: a model fits one kind of axis"
+            f"`units` is {kind!r}, but the model is {chosen.units!r}: a model fits one kind of axis",
+            kind="units_mismatch",
+            field="units",
+            value=kind,
+            expected=chosen.units,
         )
     record = as_motion_data(data, columns=columns, units=kind)
     reconstruction, notes = effective_reconstruction(chosen, record, cutoff)

@@ -20,7 +20,7 @@ import time
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Literal, NoReturn, TextIO
 
-from .errors import InputError
+from .errors import InputError, shown
 
 if TYPE_CHECKING:
     from types import TracebackType
@@ -54,7 +54,13 @@ class Progress:
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
         if mode not in MODES:
-            raise InputError(f"`mode` must be one of {', '.join(MODES)}, got {mode!r:.80}")
+            raise InputError(
+                f"`mode` must be one of {', '.join(MODES)}, got {shown(mode)!r:.80}",
+                kind="invalid_choice",
+                field="mode",
+                value=mode,
+                expected=MODES,
+            )
         self.label = label
         self.interval = float(interval)
         self._stream = stream
@@ -131,7 +137,12 @@ def reporting(progress: bool | Progress, label: str) -> Iterator[Progress]:
         yield progress
         return
     if not isinstance(progress, bool):
-        raise InputError(f"`progress` must be a bool or a leuven_rt.progress.Progress, got {progress!r:.80}")
+        raise InputError(
+            f"`progress` must be a bool or a leuven_rt.progress.Progress, got {shown(progress)!r:.80}",
+            kind="wrong_type",
+            field="progress",
+            value=progress,
+        )
     with Progress(label, "auto" if progress else "off") as own:
         yield own
 

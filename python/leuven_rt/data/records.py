@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike
 
 from .._checks import real_array
 from .._typing import FloatArray
-from ..errors import DataError, ResamplingWarning, UnitsWarning
+from ..errors import DataError, ResamplingWarning, UnitsWarning, data_of, shown
 from ..units import Units, check_units, unit_names
 
 #: Fewer samples than this cannot be filtered, split into training and held-out parts, and fitted.
@@ -116,7 +116,12 @@ class MotionData:
         object.__setattr__(self, "units", check_units(self.units, error=DataError))
         notes: Any = self.notes  # typed as a tuple, but any value may come
         if not isinstance(notes, (list, tuple)) or not all(isinstance(note, str) for note in notes):
-            raise DataError(f"`notes` must be a sequence of str, got {notes!r:.80}")
+            raise DataError(
+                f"`notes` must be a sequence of str, got {shown(notes)!r:.80}",
+                kind="wrong_type",
+                field="notes",
+                value=notes,
+            )
         object.__setattr__(self, "notes", tuple(notes))
         columns = {"t": self.t, "x": self.x, "f": self.f}
         if self.v is not None:
@@ -126,7 +131,10 @@ class MotionData:
             raise DataError(
                 f"`t` must be uniformly sampled (steps within {UNIFORM_TOLERANCE:g} of the median), "
                 f"got steps from {np.min(np.diff(checked['t'])):g} to {np.max(np.diff(checked['t'])):g} s; "
-                "as_motion_data resamples such data"
+                "as_motion_data resamples such data",
+                kind="not_uniform",
+                field="t",
+                bound=UNIFORM_TOLERANCE,
             )
         for name, values in checked.items():
             values.setflags(write=False)
@@ -179,7 +187,13 @@ def _column(name: str, values: ArrayLike) -> FloatArray:
     if array.ndim == 2 and 1 in array.shape:  # MATLAB stores vectors as (T, 1)
         array = array.ravel()
     if array.ndim != 1:
-        raise DataError(f"column `{name}` must be one-dimensional, got shape {array.shape}")
+        raise DataError(
+            f"column `{name}` must be one-dimensional, got shape {array.shape}",
+            kind="shape",
+            field=name,
+            expected="(T,)",
+            got=array.shape,
+        )
     return array
 
 
@@ -200,32 +214,64 @@ def check_columns(
     if missing:
         raise DataError(
             f"missing columns {missing}: expected `t` [s], `x` [{si.position}], `f` [{si.force}] "
-            f"and optionally `v` [{si.velocity}], got columns {sorted(columns)}"
+            f"and optionally `v` [{si.velocity}], got columns {sorted(columns)}",
+            kind="missing_column",
+            field=missing[0],
+            expected=["t", "x", "f"],
+            got=sorted(columns),
         )
     arrays = {name: _column(name, columns[name]) for name in ("t", "x", "f", "v") if name in columns}
     lengths = {name: array.size for name, array in arrays.items()}
     if len(set(lengths.values())) != 1:
-        raise DataError(f"columns must have the same length, got lengths {lengths}")
+        differing = next(name for name, length in lengths.items() if length != lengths["t"])
+        raise DataError(
+            f"columns must have the same length, got lengths {lengths}",
+            kind="input_length_mismatch",
+            field=differing,
+            expected=lengths["t"],
+            got=lengths[differing],
+        )
     samples = lengths["t"]
     if samples < MIN_SAMPLES:
-        raise DataError(f"too few samples: need at least {MIN_SAMPLES}, got {samples}")
+        raise DataError(
+            f"too few samples: need at least {MIN_SAMPLES}, got {samples}",
+            kind="too_few",
+            value=samples,
+            bound=MIN_SAMPLES,
+        )
     for name, array in arrays.items():
         finite = np.isfinite(array)
         if not finite.all():
             index = int(np.argmin(finite))
-            raise DataError(f"column `{name}` must be finite, got {array[index]} at sample {index}")
+            value = float(array[index])
+            raise DataError(
+                f"column `{name}` must be finite, got {value} at sample {index}",
+                kind="not_finite",
+                field=name,
+                value=value,
+                sample=index,
+            )
     steps = np.diff(arrays["t"])
     if not (steps > 0).all():
         index = int(np.argmin(steps > 0))
+        before, after = float(arrays["t"][index]), float(arrays["t"][index + 1])
         raise DataError(
-            f"`t` must strictly increase, got t[{index}] = {arrays['t'][index]!r} followed by "
-            f"t[{index + 1}] = {arrays['t'][index + 1]!r}"
+            f"`t` must strictly increase, got t[{index}] = {before!r} followed by t[{index + 1}] = {after!r}",
+            kind="not_increasing",
+            field="t",
+            value=after,
+            bound=before,
+            sample=index + 1,
         )
     step = float(np.median(steps))
     if not STEP_RANGE[0] <= step <= STEP_RANGE[1]:
         raise DataError(
             f"the sampling step of `t` must be between {STEP_RANGE[0]:g} and {STEP_RANGE[1]:g} s, "
-            f"got {step:g}: is `t` in seconds?"
+            f"got {step:g}: is `t` in seconds?",
+            kind="implausible_units",
+            field="t",
+            value=step,
+            bound=STEP_RANGE[0] if step < STEP_RANGE[0] else STEP_RANGE[1],
         )
     bounds = {"f": (MAX_FORCE, si.force), "x": (MAX_POSITION, si.position),
               "v": (MAX_VELOCITY, si.velocity)}  # fmt: skip
@@ -235,23 +281,38 @@ def check_columns(
             if largest > bound:
                 raise DataError(
                     f"column `{name}` reaches {largest:g} {unit}, beyond {bound:g} {unit}: "
-                    f"expected SI units ({unit})"
+                    f"expected SI units ({unit})",
+                    kind="implausible_units",
+                    field=name,
+                    value=largest,
+                    bound=bound,
                 )
     speed = float(np.max(np.abs(np.diff(arrays["x"]))) / step)
     if speed > MAX_VELOCITY:
         raise DataError(
             f"`x` moves at up to {speed:g} {si.velocity} between samples, beyond {MAX_VELOCITY:g} "
-            f"{si.velocity}: expected `x` in {si.position} and `t` in s"
+            f"{si.velocity}: expected `x` in {si.position} and `t` in s",
+            kind="implausible_units",
+            field="x",
+            value=speed,
+            bound=MAX_VELOCITY,
         )
     if np.ptp(arrays["x"]) == 0.0:
-        raise DataError("`x` never changes: there is no motion to identify friction from")
+        raise DataError(
+            "`x` never changes: there is no motion to identify friction from", kind="no_motion", field="x"
+        )
     if "v" in arrays:
         agreement = velocity_agreement(arrays["t"], arrays["x"], arrays["v"])
         if agreement is not None and agreement.opposite > MAX_SIGN_DISAGREEMENT:
             raise DataError(
                 f"{_label('v', names)} has the opposite sign of the motion of `x` on "
                 f"{agreement.opposite:.0%} of the moving samples ({agreement.moving} windows of "
-                f"{agreement.window} samples): expected v = dx/dt; is it -dx/dt? (negate it, or leave it out)"
+                f"{agreement.window} samples): expected v = dx/dt; is it -dx/dt? "
+                "(negate it, or leave it out)",
+                kind="wrong_sign",
+                field="v",
+                value=agreement.opposite,
+                bound=MAX_SIGN_DISAGREEMENT,
             )
     return arrays
 
@@ -334,7 +395,12 @@ def resample_uniform(columns: Mapping[str, FloatArray]) -> tuple[dict[str, Float
         index = int(np.argmax(steps))
         raise DataError(
             f"`t` has a gap of {longest:g} s after sample {index} ({longest / step:.1f} median steps): "
-            f"expected steps within {MAX_GAP:g} median steps (or {MIN_GAP:g} s); split the log at the gap"
+            f"expected steps within {MAX_GAP:g} median steps (or {MIN_GAP:g} s); split the log at the gap",
+            kind="gap",
+            field="t",
+            value=longest,
+            bound=max(MAX_GAP * step, MIN_GAP),
+            sample=index,
         )
     grid = t[0] + step * np.arange(int(np.floor((t[-1] - t[0]) / step + 1e-9)) + 1)
     note = (
@@ -463,17 +529,27 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
     try:
         raw = path.read_bytes()
     except OSError as error:
-        raise DataError(f"cannot read {path}: {error.strerror or error}") from None
+        raise DataError(
+            f"cannot read {path}: {error.strerror or error}", kind="unreadable_file", value=str(path)
+        ) from None
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         raise DataError(
-            f"{path} is not UTF-8 text (byte {error.start} is {raw[error.start]:#04x}): expected {expected}"
+            f"{path} is not UTF-8 text (byte {error.start} is {raw[error.start]:#04x}): expected {expected}",
+            kind="not_text",
+            value=str(path),
+            index=error.start,
         ) from None
     if not text.strip():
-        raise DataError(f"{path} is empty: expected {expected}")
+        raise DataError(f"{path} is empty: expected {expected}", kind="empty_file", value=str(path))
     if "\0" in text:
-        raise DataError(f"{path} holds NUL characters, so it is not text: expected {expected}")
+        raise DataError(
+            f"{path} holds NUL characters, so it is not text: expected {expected}",
+            kind="not_text",
+            value=str(path),
+            index=text.index("\0"),
+        )
     lines = text.splitlines()
     first = next(index for index, line in enumerate(lines) if line.strip())
     sample = [line for line in lines[first : first + 4 * SNIFFED_LINES] if line.strip()][: SNIFFED_LINES + 1]
@@ -481,17 +557,28 @@ def load_csv(path: Path) -> dict[str, FloatArray]:
     header = [name.strip() for name in next(csv.reader(sample[:1], delimiter=separator, quotechar=quote,
                                                         skipinitialspace=True))]  # fmt: skip
     if not any(header):
-        raise DataError(f"{path} must start with a header line naming the columns, e.g. `t,x,f`")
+        raise DataError(
+            f"{path} must start with a header line naming the columns, e.g. `t,x,f`",
+            kind="no_header",
+            value=str(path),
+        )
     named = [name for name in header if name]
     if all(_is_number(name.replace(",", ".") if separator == ";" else name) for name in named):
         raise DataError(
             f"cannot read {path} as {expected}: line {first + 1} holds numbers "
             f"({lines[first].strip()!r:.60}), not column names: the header line is missing (add one, "
-            "e.g. `t,x,f`)"
+            "e.g. `t,x,f`)",
+            kind="no_header",
+            value=str(path),
+            index=first + 1,
         )
     repeated = sorted({name for name in named if named.count(name) > 1})
     if repeated:
-        raise DataError(f"cannot read {path} as {expected}: the header names {repeated} more than once")
+        raise DataError(
+            f"cannot read {path} as {expected}: the header names {repeated} more than once",
+            kind="repeated",
+            field=repeated[0],
+        )
     body = text[text.index(lines[first]) + len(lines[first]) :]
     if separator == ";":  # the separator of locales that write a decimal comma
         body = body.replace(",", ".")
@@ -544,7 +631,12 @@ def _cells(
         if len(row) != width:
             raise DataError(
                 f"cannot read {path} as {expected}: line {number} has {len(row)} cells, "
-                f"the header has {width}"
+                f"the header has {width}",
+                kind="ragged",
+                value=str(path),
+                index=number,
+                expected=width,
+                got=len(row),
             )
         rows.append(row)
     used = [index for index, name in enumerate(header) if name]
@@ -565,7 +657,10 @@ def _cells(
             )
             raise DataError(
                 f"cannot read {path} as {expected}: line {number} holds text, not numbers "
-                f"({line.strip()!r:.60}): {cause}"
+                f"({line.strip()!r:.60}): {cause}",
+                kind="not_real",
+                value=str(path),
+                index=number,
             )
     return columns
 
@@ -580,19 +675,33 @@ def load_emps(path: Path) -> dict[str, FloatArray]:
     except Exception as error:
         message = " ".join(str(error).split())[:300]
         raise DataError(
-            f"cannot read {path} as a MATLAB .mat file: {type(error).__name__}: {message}"
+            f"cannot read {path} as a MATLAB .mat file: {type(error).__name__}: {message}",
+            kind="unreadable_file",
+            value=str(path),
         ) from None
     missing = [name for name in ("t", "qm", "vir", "gtau") if name not in content]
     if missing:
         raise DataError(
             f"{path} lacks the EMPS variables {missing}: "
-            "expected `t`, `qm`, `vir`, `gtau` (f = gtau·vir, x = qm)"
+            "expected `t`, `qm`, `vir`, `gtau` (f = gtau·vir, x = qm)",
+            kind="missing_column",
+            field=missing[0],
+            value=str(path),
+            expected=["t", "qm", "vir", "gtau"],
+            got=sorted(name for name in content if not name.startswith("__")),
         )
     gtau = (
         real_array(content["gtau"], "gtau", DataError, label=f"`gtau` in {path}").astype(np.float64).ravel()
     )
     if gtau.size != 1:
-        raise DataError(f"`gtau` in {path} must be one number, got shape {content['gtau'].shape}")
+        raise DataError(
+            f"`gtau` in {path} must be one number, got shape {content['gtau'].shape}",
+            kind="shape",
+            field="gtau",
+            value=str(path),
+            expected=(1,),
+            got=content["gtau"].shape,
+        )
     vir = _column("vir", content["vir"])
     return {"t": _column("t", content["t"]), "x": _column("qm", content["qm"]), "f": gtau[0] * vir}
 
@@ -601,13 +710,19 @@ def load_columns(path: str | PathLike[str]) -> dict[str, FloatArray]:
     """The raw columns of a ``.csv`` or EMPS ``.mat`` file (not yet validated)."""
     path = Path(path)
     if not path.is_file():
-        raise DataError(f"data file {path} does not exist")
+        raise DataError(f"data file {path} does not exist", kind="no_such_file", value=str(path))
     suffix = path.suffix.lower()
     if suffix == ".csv":
         return load_csv(path)
     if suffix == ".mat":
         return load_emps(path)
-    raise DataError(f"data file must end in .csv or .mat, got {path.name!r}")
+    raise DataError(
+        f"data file must end in .csv or .mat, got {path.name!r}",
+        kind="invalid_choice",
+        value=str(path),
+        expected=(".csv", ".mat"),
+        got=suffix,
+    )
 
 
 def check_column_map(columns: Any) -> dict[str, str]:
@@ -615,14 +730,29 @@ def check_column_map(columns: Any) -> dict[str, str]:
     ``t``, ``x``, ``f``, ``v``) checked, as a plain dict."""
     if not isinstance(columns, Mapping):
         raise DataError(
-            f"`columns` must be a mapping from t, x, f, v to the log's column names, got {columns!r:.80}"
+            "`columns` must be a mapping from t, x, f, v to the log's column names, "
+            f"got {shown(columns)!r:.80}",
+            kind="wrong_type",
+            field="columns",
+            value=columns,
         )
     unknown = [key for key in columns if key not in ROLES]
     if unknown:
-        raise DataError(f"`columns` maps {unknown!r:.80}: expected keys among t, x, f, v")
+        raise DataError(
+            f"`columns` maps {unknown!r:.80}: expected keys among t, x, f, v",
+            kind="unknown_key",
+            field=f"columns[{unknown[0]!r}]",
+            value=unknown[0],
+            expected=list(ROLES),
+        )
     for key, name in columns.items():
         if not isinstance(name, str) or not name.strip():
-            raise DataError(f"`columns[{key!r}]` must be a column name, got {name!r:.80}")
+            raise DataError(
+                f"`columns[{key!r}]` must be a column name, got {shown(name)!r:.80}",
+                kind="wrong_type",
+                field=f"columns[{key!r}]",
+                value=name,
+            )
     mapping = {key: name.strip() for key, name in columns.items()}
     roles: dict[str, list[str]] = {}
     for key, name in mapping.items():
@@ -632,7 +762,10 @@ def check_column_map(columns: Any) -> dict[str, str]:
             both = " and ".join(f"`{key}`" for key in keys)
             raise DataError(
                 f"`columns` maps {both} to the same column `{name}`: each of t, x, f, v needs a column "
-                "of its own"
+                "of its own",
+                kind="repeated",
+                field="columns",
+                value=name,
             )
     return mapping
 
@@ -646,10 +779,18 @@ def parse_column_map(text: str) -> dict[str, str]:
         if not equals or not name.strip() or key not in ROLES:
             raise DataError(
                 f"`--columns` must be a list like t=time,x=q7,f=tau[,v=dq7] (keys among t, x, f, v), "
-                f"got {item.strip()!r} in {text!r:.120}"
+                f"got {item.strip()!r} in {text!r:.120}",
+                kind="malformed",
+                field="--columns",
+                value=item.strip(),
             )
         if key in mapping:
-            raise DataError(f"`--columns` gives `{key}` twice in {text!r:.120}")
+            raise DataError(
+                f"`--columns` gives `{key}` twice in {text!r:.120}",
+                kind="repeated",
+                field="--columns",
+                value=key,
+            )
         mapping[key] = name.strip()
     return mapping
 
@@ -664,7 +805,11 @@ def select_columns(raw: Mapping[str, Any], columns: Mapping[str, str], source: s
         have = ", ".join(str(column) for column in raw)
         raise DataError(
             f"`columns` maps `{key}` to the column `{name}`, which {source} does not have: "
-            f"its columns are {have}"
+            f"its columns are {have}",
+            kind="missing_column",
+            field=name,
+            expected=sorted(columns.values()),
+            got=[str(column) for column in raw],
         )
     taken = {name: key for key, name in columns.items()}
     selected = {key: raw[name] for key, name in columns.items()}
@@ -673,7 +818,10 @@ def select_columns(raw: Mapping[str, Any], columns: Mapping[str, str], source: s
             if role in taken and role != "v":  # v is optional: the column stays with its mapped role
                 raise DataError(
                     f"`columns` maps `{taken[role]}` to the column `{role}`, which `{role}` would take too: "
-                    f"each of t, x, f, v needs a column of its own (map `{role}` to another column)"
+                    f"each of t, x, f, v needs a column of its own (map `{role}` to another column)",
+                    kind="repeated",
+                    field="columns",
+                    value=role,
                 )
             if role not in taken:
                 selected[role] = raw[role]
@@ -698,21 +846,38 @@ def as_motion_data(
     mapping = None if columns is None else check_column_map(columns)
     if isinstance(data, MotionData):
         if mapping:
-            raise DataError("`columns` applies to a file or a mapping of columns, not to a MotionData")
+            raise DataError(
+                "`columns` applies to a file or a mapping of columns, not to a MotionData",
+                kind="not_applicable",
+                field="columns",
+            )
         if chosen is not None and chosen != data.units:
-            raise DataError(f"`units` is {chosen!r}, but the MotionData holds {data.units!r} data")
+            raise DataError(
+                f"`units` is {chosen!r}, but the MotionData holds {data.units!r} data",
+                kind="units_mismatch",
+                field="units",
+                value=chosen,
+                expected=data.units,
+            )
         return data
     raw: Mapping[str, ArrayLike]
     if isinstance(data, (str, PathLike)):
         raw, source = load_columns(data), str(data)
         if mapping and Path(data).suffix.lower() == ".mat":
-            raise DataError(f"{source}: `columns` applies to .csv files and mappings, not to EMPS .mat files")
+            raise DataError(
+                f"{source}: `columns` applies to .csv files and mappings, not to EMPS .mat files",
+                kind="not_applicable",
+                field="columns",
+            )
     elif isinstance(data, Mapping):
         raw, source = dict(data), "arrays"
     else:
         raise DataError(
             f"`data` must be a MotionData, a path to a .csv or .mat file, or a mapping of columns "
-            f"t, x, f[, v]; got {type(data).__name__}"
+            f"t, x, f[, v]; got {type(data).__name__}",
+            kind="wrong_type",
+            field="data",
+            value=data,
         )
     kind: Units = chosen or "linear"
     notes: list[str] = []
@@ -733,5 +898,5 @@ def as_motion_data(
     except DataError as error:
         if source == "arrays":
             raise
-        raise DataError(f"{source}: {error}") from None  # which file, when it came from one
+        raise DataError(f"{source}: {error}", **data_of(error)) from None  # which file, when it came from one
     return MotionData._from_checked(checked, source, kind, tuple(notes))

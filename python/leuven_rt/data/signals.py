@@ -45,7 +45,11 @@ def check_cutoff(cutoff: object, dt: float, samples: int) -> float:
     if not value < nyquist:  # NaN too
         raise DataError(
             f"`cutoff` must be below {nyquist:g} Hz (the Nyquist frequency of a {dt:g} s step), "
-            f"got {value!r} Hz"
+            f"got {value!r} Hz",
+            kind="out_of_range",
+            field="cutoff",
+            value=value,
+            bound=nyquist,
         )
     duration = samples * dt
     lowest = MIN_CUTOFF_PERIODS / duration
@@ -53,7 +57,11 @@ def check_cutoff(cutoff: object, dt: float, samples: int) -> float:
         raise DataError(
             f"`cutoff` must be at least {lowest:.3g} Hz for a record of {duration:g} s ({samples} samples): "
             f"the record must hold {MIN_CUTOFF_PERIODS} periods of the cutoff for the filter's transients "
-            f"at its ends to die out, got {value!r} Hz"
+            f"at its ends to die out, got {value!r} Hz",
+            kind="out_of_range",
+            field="cutoff",
+            value=value,
+            bound=lowest,
         )
     return value
 
