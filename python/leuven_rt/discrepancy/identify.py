@@ -21,7 +21,7 @@ from threadpoolctl import threadpool_limits
 
 from ..data.reconstruction import describe, travel_since_reversal
 from ..data.records import DataLike, as_motion_data
-from ..errors import InputError
+from ..errors import InputError, shown
 from ..modelfile import ModelFile
 from ..params import Params
 from ..prediction import predict
@@ -84,7 +84,12 @@ def identify(
     if settings is None:
         settings = Settings()
     elif not isinstance(settings, Settings):
-        raise InputError(f"`settings` must be a leuven_rt.fitting.Settings or None, got {settings!r:.80}")
+        raise InputError(
+            f"`settings` must be a leuven_rt.fitting.Settings or None, got {shown(settings)!r:.80}",
+            kind="wrong_type",
+            field="settings",
+            value=settings,
+        )
     record = as_motion_data(data, columns=columns, units=units)
     with reporting(progress, "identify") as bar, threadpool_limits(limits=1, user_api="blas"):
         # One BLAS thread: the fits are many small factorisations, which threads slow down on a

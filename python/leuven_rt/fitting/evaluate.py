@@ -21,7 +21,8 @@ from numpy.typing import NDArray
 from .._typing import FloatArray
 from ..data.reconstruction import Motion
 from ..params import Params
-from .sensitivity import friction_sensitivities
+from ..simulation import simulate, simulate_position
+from .sensitivity import sensitivities
 from .structure import FRICTION, HARMONICS, Scales, Structure, Values, unpack
 
 
@@ -72,7 +73,7 @@ def evaluate(
     values = unpack(structure, scales, theta)
     names = structure.names() + structure.share_names(scales.deltas.size)
     params = params_of(values)
-    friction, sensitivities = friction_sensitivities(params, motion.drive, motion.dt, input=motion.input, rows=rows)
+    friction, derivatives = _friction(params, motion, rows)
     v = motion.v
     sigma2, sigma2_neg = float(values.friction["sigma2"] or 0.0), values.friction["sigma2_neg"]
     viscous_coefficient = np.where(v < 0, sigma2 if sigma2_neg is None else float(sigma2_neg), sigma2)
@@ -95,10 +96,10 @@ def evaluate(
         force += values.inertia * motion.a
     if rows is None:
         return Evaluation(values, force, None)
-    assert sensitivities is not None
+    assert derivatives is not None
     index = {name: i for i, name in enumerate(names)}
     # d friction/dθ, then the viscous part, which the level does not scale, split off again.
-    d_friction = sensitivities @ values.jacobian
+    d_friction = derivatives @ values.jacobian
     viscous_rows = np.zeros((int(rows.sum()), len(names)))
     positive = np.where(v >= 0, v, 0.0)[rows]
     negative = np.where(v < 0, v, 0.0)[rows]
@@ -117,6 +118,17 @@ def evaluate(
     if structure.has("inertia"):
         jac[:, index["inertia"]] = motion.a[rows]
     return Evaluation(values, force, jac)
+
+
+def _friction(params: Params, motion: Motion, rows: NDArray[np.bool_] | None) -> tuple[FloatArray, FloatArray | None]:
+    """The friction model's force along ``motion`` (gms-core's step), and its derivatives by the
+    friction parameters on ``rows`` when asked."""
+    if rows is None:
+        if motion.input == "velocity":
+            return simulate(params, motion.drive, motion.dt), None
+        return simulate_position(params, motion.drive, motion.dt), None
+    result = sensitivities(params, motion.drive, motion.dt, input=motion.input, rows=np.flatnonzero(rows))
+    return result.force, result.jacobian
 
 
 def _series_names(structure: Structure, names: list[str]) -> list[str]:

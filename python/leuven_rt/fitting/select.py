@@ -53,6 +53,10 @@ EDGE = 20
 #: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
 #: frequency.
 FILTERS = (0.2, 0.05)
+#: Most rows a fit's residual and Jacobian hold: a longer record is fitted on every k-th weighted
+#: sample (the simulation runs on every sample). The sampling error of a mean squared error over
+#: N rows of noise is σ²·√(2/N), 0.008·σ² at this N, far below the thresholds (0.2–1 unit).
+FIT_ROWS = 2**15
 #: A log needs this many samples that move (between encoder counts or by its velocity) to fit.
 MIN_MOVING = 100
 
@@ -110,34 +114,26 @@ def select(
     base = fit(structure, scales, target, _coulomb_viscous(target, structure))
     params = params_of(base.evaluation.values)
     floor = floor_estimate(params, record.x, record.dt, reconstruction, target.weight)
-    # The noise is read from what the model leaves (the force's own changes would count as noise),
-    # first the baseline's, then, once the effects are in, the final model's; the unit only falls,
-    # and the rounds go on from where they stopped when it does.
-    noise = _noise(base, target)
-    unit = _unit(noise, floor, scales)
+    # Forward, then backward. The noise is read from what a model leaves: the baseline's residual
+    # still holds the missing effects, which its differences at a few samples would count as
+    # noise, so the rounds add effects against the noise its one-sample differences read (at or
+    # below the noise, white or coloured); then the final model's residual reads the noise, and
+    # every effect whose removal loses less than the threshold in that unit is taken out again.
+    permissive = _unit(_sample_noise(base, target), floor, scales)
     say("selecting effects")
-    steps, final, tried = _rounds(base, scales, target, settings, unit, say)
-    while True:
-        # What the model leaves on the weighted samples bounds the floor there from above (it is
-        # the floor when the model is right), and its differences read the noise.
-        noise = min(noise, _noise(final, target))
-        floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
-        if not _unit(noise, floor, scales) < unit:
-            break
-        unit = _unit(noise, floor, scales)
-        more, final, tried = _rounds(final, scales, target, settings, unit, say)
-        steps += more
-        if not more:
-            break
+    steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
+    noise, floor, unit = _evidence(final, target, floor, scales)
+    final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     drifting = fit(final.structure.with_drift(), scales, target, final.theta)
     drift = _significant(final, drifting, target, settings.drift * unit, settings)
     without = final
     if drift:
         say("a drift of the level: selecting again with it fitted alongside")
-        with_drift = fit(structure.with_drift(), scales, target, base.theta)
-        steps, final, tried = _rounds(with_drift, scales, target, settings, unit, say)
+        base = fit(structure.with_drift(), scales, target, base.theta)
+        steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
+        noise, floor, unit = _evidence(final, target, floor, scales)
+        final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
-        base = with_drift
     if reconstruction.source == "position":
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
@@ -148,7 +144,70 @@ def select(
 
 
 def _noise(fitted: Fitted, target: Target) -> float:
-    return residual_noise(target.force - fitted.force, target.rows)
+    return residual_noise(target.force - fitted.force, target.weight > 0)
+
+
+def _sample_noise(fitted: Fitted, target: Target) -> float:
+    """The noise read from one-sample differences of what ``fitted`` leaves: at or below the
+    noise, white or coloured, and little touched by slow model errors."""
+    residual = target.force - fitted.force
+    weighted = target.weight > 0
+    rows = weighted[1:] & weighted[:-1]
+    differences = (residual[1:] - residual[:-1])[rows]
+    if differences.size < 2:
+        return 0.0
+    return 1.4826 * float(np.median(np.abs(differences - np.median(differences)))) / math.sqrt(2.0)
+
+
+def _evidence(final: Fitted, target: Target, floor: Floor, scales: Scales) -> tuple[float, Floor, float]:
+    """The noise, the floor and the unit read from what the ``final`` model leaves: its
+    residual's noise, and the floor on the weighted samples bounded by its excess over that
+    noise (the floor itself when the model is right)."""
+    noise = _noise(final, target)
+    floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
+    return noise, floor, _unit(noise, floor, scales)
+
+
+def _prune(
+    base: Fitted,
+    final: Fitted,
+    steps: list[Step],
+    scales: Scales,
+    target: Target,
+    settings: Settings,
+    unit: float,
+    say: Progress,
+) -> tuple[Fitted, list[Step]]:
+    """``final`` without every added effect that its removal costs less than the threshold, one
+    at a time, the least useful first; and the steps that add the remaining ones in their order."""
+    added = [step.effect for step in steps]
+    pruned = False
+    while added:
+        options = []
+        for effect in added:
+            structure = final.structure.without(effect)
+            theta = {name: value for name, value in final.theta.items() if name in structure.names()
+                     or name in structure.share_names(scales.deltas.size)}  # fmt: skip
+            options.append((effect, fit(structure, scales, target, theta, SCREEN)))
+        effect, reduced = min(options, key=lambda option: option[1].mse)
+        if _significant(reduced, final, target, settings.significance * unit, settings):
+            break
+        say(f"taken out again: {effect} (gains only {(reduced.mse - final.mse) / unit:.2f} units)")
+        final = fit(reduced.structure, scales, target, reduced.theta)
+        added.remove(effect)
+        pruned = True
+    if not pruned:
+        return final, steps
+    kept: list[Step] = []
+    current = base
+    for effect in added:
+        template = final.structure
+        grown = fit(_with(current.structure, effect, template), scales, target, current.theta)
+        kept.append(Step(effect, current, grown))
+        current = grown
+    if kept:
+        kept[-1] = Step(kept[-1].effect, kept[-1].before, final)
+    return final, kept
 
 
 def _unit(noise: float, floor: Floor, scales: Scales) -> float:
@@ -301,7 +360,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
         raise DataError(
             f"no sliding motion: {np.count_nonzero(moving)} samples move and the position spans {stroke:.3g} "
             f"(encoder step {step:.3g}); a log to identify from needs the axis to slide back and forth, over "
-            f"at least {MIN_MOVING} moving samples and many encoder steps"
+            f"at least {MIN_MOVING} moving samples and many encoder steps",
+            kind="no_sliding_motion",
+            field="x",
+            value=float(stroke),
         )
     speeds = np.abs(motion.v[moving])
     high = float(np.percentile(speeds, 99))
@@ -318,7 +380,8 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     scales = Scales(speed_low=low, speed_high=high, force=force_scale, stiff=stiff, grid=grid, middle=middle,
                     half_stroke=0.5 * stroke)  # fmt: skip
     tau = np.linspace(-1.0, 1.0, samples)
-    return Target(record.f, weight, motion, tau), scales
+    stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
+    return Target(record.f, weight, motion, tau, stride), scales
 
 
 def _excursion(x: FloatArray) -> float:

@@ -51,10 +51,16 @@ class Target:
     motion: Motion
     tau: FloatArray
     """Time scaled to [−1, 1] over the record (the drift's coordinate)."""
+    stride: int = 1
+    """The fit's residual and Jacobian take every ``stride``-th weighted sample (a long record is
+    simulated whole but fitted on a subsample); mean squared errors take them all."""
 
     @property
     def rows(self) -> NDArray[np.bool_]:
-        return self.weight > 0
+        rows = self.weight > 0
+        if self.stride > 1:
+            rows &= np.arange(rows.size) % self.stride == 0
+        return rows
 
     def mse(self, model_force: FloatArray) -> float:
         return float(np.sum(self.weight * (model_force - self.force) ** 2) / np.sum(self.weight))

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .._typing import FloatArray
-from ..errors import InputError
+from ..errors import InputError, shown
 
 #: The effect names, in the order the catalogue lists them (docs/effects.md#the-effects).
 CATALOGUE = (
@@ -62,16 +62,27 @@ def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tup
     """Effect names from a list or a comma-separated string; unknown or repeated names are refused."""
     given: object = names  # checked as what may come, not as what is declared
     if not isinstance(given, (str, Sequence)) or isinstance(given, (bytes, bytearray)):
-        raise InputError(f"`{argument}` must be effect names, as a list or comma-separated, got {names!r:.80}")
+        raise InputError(
+            f"`{argument}` must be effect names, as a list or comma-separated, got {shown(names)!r:.80}",
+            kind="wrong_type",
+            field=argument,
+        )
     items = [name.strip() for name in names.split(",")] if isinstance(names, str) else list(names)
     items = [name for name in items if name]
     if any(not isinstance(name, str) for name in items):
-        raise InputError(f"`{argument}` must be effect names (strings), got {items!r}")
+        raise InputError(
+            f"`{argument}` must be effect names (strings), got {shown(items)!r}", kind="wrong_type", field=argument
+        )
     unknown = [name for name in items if name not in CATALOGUE]
     if unknown:
-        raise InputError(f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}")
+        raise InputError(
+            f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}",
+            kind="invalid_choice",
+            field=argument,
+            value=unknown[0],
+        )
     if len(set(items)) != len(items):
-        raise InputError(f"`{argument}` repeats effects: got {items}")
+        raise InputError(f"`{argument}` repeats effects: got {items}", kind="repeated", field=argument)
     return tuple(items)
 
 
@@ -93,6 +104,11 @@ class Structure:
         if effect == "position_dependence":
             return replace(self, effects=self.effects | {effect}, form=form, periods=tuple(periods))
         return replace(self, effects=self.effects | {effect})
+
+    def without(self, effect: str) -> Structure:
+        if effect == "position_dependence":
+            return replace(self, effects=self.effects - {effect}, form=None, periods=())
+        return replace(self, effects=self.effects - {effect})
 
     def with_drift(self, drift: bool = True) -> Structure:
         return replace(self, drift=drift)
