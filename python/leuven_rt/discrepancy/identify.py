@@ -148,6 +148,7 @@ def _identification(
     described = {**reconstruction_dict(reconstruction), "description": describe(reconstruction)}
     diagnosis = Diagnosis(
         samples=record.samples, noise_std=run.noise, floor_estimate=run.floor.full, reconstruction=described,
+        gross_errors=run.gross,
         baseline=baseline, rms_before=_rms(residuals[0]), rms_after=prediction.rms, steps=steps,
         unexplained_significant=bool(significant), unexplained_where=where, drift=run.drift,
         settings=dataclasses.asdict(settings),

@@ -36,6 +36,8 @@ class Diagnosis:
     floor_estimate: float
     """The error the right model would still have with this log's motion signal [N or N·m]."""
     reconstruction: dict[str, Any]
+    gross_errors: int
+    """Samples the fit left out as gross errors (beyond 5 times the noise of the final model)."""
     baseline: tuple[str, ...]
     rms_before: float
     rms_after: float
@@ -68,6 +70,7 @@ class Diagnosis:
             "noise_std": self.noise_std,
             "floor_estimate": self.floor_estimate,
             "reconstruction": self.reconstruction,
+            "gross_errors": self.gross_errors,
             "baseline": list(self.baseline),
             "rms_before": self.rms_before,
             "rms_after": self.rms_after,
@@ -96,6 +99,8 @@ class Diagnosis:
             f"{self.samples} samples; force noise {self.noise_std:.3g} {N}; the floor this log allows "
             f"{self.floor_estimate:.3g} {N} (the error of the right model driven by what the log gives)",
             f"the model is driven by {self.reconstruction['description']}",
+            *([f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors the model "
+               "cannot explain (beyond 5 times the noise); the fit leaves them out"] if self.gross_errors else []),
             f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} {N}",
             "where the baseline and the data disagree (residual rms by region):",
         ]

@@ -17,12 +17,14 @@ of the model file that holds it.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..data.reconstruction import (
@@ -53,6 +55,12 @@ EDGE = 20
 #: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
 #: frequency.
 FILTERS = (0.2, 0.05)
+#: A sample the final model misses by more than this many times the noise is a gross error.
+OUTLIER = 5.0
+#: The rounds run again without the gross errors when there are at least this many of them, and
+#: at least this share of the weighted samples (Gaussian noise exceeds 5σ once in 1.7 million).
+MIN_GROSS = 10
+GROSS_SHARE = 1e-3
 #: Most rows a fit's residual and Jacobian hold: a longer record is fitted on every k-th weighted
 #: sample (the simulation runs on every sample). The sampling error of a mean squared error over
 #: N rows of noise is σ²·√(2/N), 0.008·σ² at this N, far below the thresholds (0.2–1 unit).
@@ -95,6 +103,8 @@ class Selection:
     file_scales: Scales
     written: Fitted
     """``without_drift`` refitted under ``file_reconstruction``: the model that is written."""
+    gross: int
+    """Samples left out as gross errors (module documentation); 0 when too few to matter."""
 
 
 Progress = Callable[[str], None]
@@ -111,9 +121,47 @@ def select(
     structure = Structure(frozenset(baseline))
     reconstruction = rounds_reconstruction(record)
     target, scales = prepare(record, reconstruction)
+    run = _select_on(structure, target, scales, settings, say)
+    # Gross errors: samples the final model misses by more than OUTLIER times the noise are not
+    # noise (a drive that lets go at a stop, a spike); the rounds run again without them, so that
+    # no effect is named to explain them.
+    residual = target.force - run.final.force
+    gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
+    if np.count_nonzero(gross) >= max(MIN_GROSS, GROSS_SHARE * np.count_nonzero(target.weight)):
+        say(f"{np.count_nonzero(gross)} samples are gross errors (beyond {OUTLIER:g} times the noise): selecting again without them")
+        weight = np.where(gross, 0.0, target.weight)
+        target = dataclasses.replace(target, weight=weight)
+        run = _select_on(structure, target, scales, settings, say)
+    final, without, floor = run.final, run.without, run.floor
+    if reconstruction.source == "position":
+        floor = with_reversals(floor, full_mse(final, target), final.mse)
+    say("choosing how the written file reconstructs the motion")
+    file = choose_reconstruction(record, without, target.weight == 0)
+    written = file[3] if file[0] == reconstruction else fit(without.structure, file[2], file[1], file[3].theta)
+    return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
+                     without, run.unit, run.tried, file[0], file[1], file[2], written,
+                     int(np.count_nonzero(gross)))  # fmt: skip
+
+
+@dataclass(frozen=True, eq=False)
+class _Run:
+    base: Fitted
+    steps: list[Step]
+    final: Fitted
+    without: Fitted
+    drift: bool
+    noise: float
+    floor: Floor
+    unit: float
+    tried: list[tuple[str, float]]
+
+
+def _select_on(structure: Structure, target: Target, scales: Scales, settings: Settings, say: Progress) -> _Run:
+    """The rounds on ``target`` (module documentation)."""
     base = fit(structure, scales, target, _coulomb_viscous(target, structure))
+    motion = target.motion
     params = params_of(base.evaluation.values)
-    floor = floor_estimate(params, record.x, record.dt, reconstruction, target.weight)
+    floor = floor_estimate(params, target.recorded_x, motion.dt, motion.reconstruction, target.weight)
     # Forward, then backward. The noise is read from what a model leaves: the baseline's residual
     # still holds the missing effects, which its differences at a few samples would count as
     # noise, so the rounds add effects against the noise its one-sample differences read (at or
@@ -134,13 +182,7 @@ def select(
         noise, floor, unit = _evidence(final, target, floor, scales)
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
-    if reconstruction.source == "position":
-        floor = with_reversals(floor, full_mse(final, target), final.mse)
-    say("choosing how the written file reconstructs the motion")
-    file = choose_reconstruction(record, without)
-    written = file[3] if file[0] == reconstruction else fit(without.structure, file[2], file[1], file[3].theta)
-    return Selection(reconstruction, target, scales, noise, floor, base, steps, final, drift, without, unit, tried,
-                     file[0], file[1], file[2], written)  # fmt: skip
+    return _Run(base, steps, final, without, drift, noise, floor, unit, tried)
 
 
 def _noise(fitted: Fitted, target: Target) -> float:
@@ -327,8 +369,11 @@ def full_mse(fitted: Fitted, target: Target) -> float:
     return float(np.mean(error**2))
 
 
-def choose_reconstruction(record: MotionData, fitted: Fitted, iterations: int = SCREEN) -> tuple[Reconstruction, Target, Scales, Fitted]:
-    """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
+def choose_reconstruction(
+    record: MotionData, fitted: Fitted, left_out: NDArray[np.bool_], iterations: int = SCREEN
+) -> tuple[Reconstruction, Target, Scales, Fitted]:
+    """The reconstruction under which ``fitted``'s structure, refitted (without the samples
+    ``left_out``: gross errors, edges, reversals no model can place), predicts the log best over
     every sample, with its target, scales and fit."""
     best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
     for reconstruction in reconstruction_options(record):
@@ -336,6 +381,7 @@ def choose_reconstruction(record: MotionData, fitted: Fitted, iterations: int = 
             target, scales = prepare(record, reconstruction)
         except DataError:
             continue
+        target = dataclasses.replace(target, weight=np.where(left_out, 0.0, target.weight))
         refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
         error = full_mse(refitted, target)
         if best is None or error < best[0]:
@@ -381,7 +427,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
                     half_stroke=0.5 * stroke)  # fmt: skip
     tau = np.linspace(-1.0, 1.0, samples)
     stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
-    return Target(record.f, weight, motion, tau, stride), scales
+    return Target(record.f, weight, motion, tau, record.x, stride), scales
 
 
 def _excursion(x: FloatArray) -> float:

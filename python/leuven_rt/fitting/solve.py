@@ -51,6 +51,8 @@ class Target:
     motion: Motion
     tau: FloatArray
     """Time scaled to [−1, 1] over the record (the drift's coordinate)."""
+    recorded_x: FloatArray
+    """The position as the log recorded it (the encoder's counts)."""
     stride: int = 1
     """The fit's residual and Jacobian take every ``stride``-th weighted sample (a long record is
     simulated whole but fitted on a subsample); mean squared errors take them all."""
