@@ -55,12 +55,12 @@ EDGE = 20
 #: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
 #: frequency.
 FILTERS = (0.2, 0.05)
-#: A sample the final model misses by more than this many times the noise is a gross error.
+#: Errors are counted robustly at this many times the noise (the forward rounds' noise, at or
+#: below the noise): Cauchy's loss, which is the squared error up to about that scale.
+ROBUST = 5.0
+#: A sample the final model misses by more than this many times the noise is a gross error (the
+#: report counts them).
 OUTLIER = 5.0
-#: The rounds run again without the gross errors when there are at least this many of them, and
-#: at least this share of the weighted samples (Gaussian noise exceeds 5σ once in 1.7 million).
-MIN_GROSS = 10
-GROSS_SHARE = 1e-3
 #: Most rows a fit's residual and Jacobian hold: a longer record is fitted on every k-th weighted
 #: sample (the simulation runs on every sample). The sampling error of a mean squared error over
 #: N rows of noise is σ²·√(2/N), 0.008·σ² at this N, far below the thresholds (0.2–1 unit).
@@ -122,21 +122,14 @@ def select(
     reconstruction = rounds_reconstruction(record)
     target, scales = prepare(record, reconstruction)
     run = _select_on(structure, target, scales, settings, say)
-    # Gross errors: samples the final model misses by more than OUTLIER times the noise are not
-    # noise (a drive that lets go at a stop, a spike); the rounds run again without them, so that
-    # no effect is named to explain them.
+    target = run.target
     residual = target.force - run.final.force
     gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
-    if np.count_nonzero(gross) >= max(MIN_GROSS, GROSS_SHARE * np.count_nonzero(target.weight)):
-        say(f"{np.count_nonzero(gross)} samples are gross errors (beyond {OUTLIER:g} times the noise): selecting again without them")
-        weight = np.where(gross, 0.0, target.weight)
-        target = dataclasses.replace(target, weight=weight)
-        run = _select_on(structure, target, scales, settings, say)
     final, without, floor = run.final, run.without, run.floor
     if reconstruction.source == "position":
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
-    file = choose_reconstruction(record, without, target.weight == 0)
+    file = choose_reconstruction(record, without, target.weight == 0, target.scale)
     written = file[3] if file[0] == reconstruction else fit(without.structure, file[2], file[1], file[3].theta)
     return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
                      without, run.unit, run.tried, file[0], file[1], file[2], written,
@@ -154,6 +147,7 @@ class _Run:
     floor: Floor
     unit: float
     tried: list[tuple[str, float]]
+    target: Target
 
 
 def _select_on(structure: Structure, target: Target, scales: Scales, settings: Settings, say: Progress) -> _Run:
@@ -168,6 +162,11 @@ def _select_on(structure: Structure, target: Target, scales: Scales, settings: S
     # below the noise, white or coloured); then the final model's residual reads the noise, and
     # every effect whose removal loses less than the threshold in that unit is taken out again.
     permissive = _unit(_sample_noise(base, target), floor, scales)
+    # Errors are counted robustly from here on: a sample the model misses by far more than the
+    # noise (a drive that lets go at a stop, a spike) weighs little more than one missed by it,
+    # so that no effect is named to explain it.
+    target = dataclasses.replace(target, scale=ROBUST * math.sqrt(permissive))
+    base = fit(structure, scales, target, base.theta)
     say("selecting effects")
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
@@ -182,7 +181,7 @@ def _select_on(structure: Structure, target: Target, scales: Scales, settings: S
         noise, floor, unit = _evidence(final, target, floor, scales)
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
-    return _Run(base, steps, final, without, drift, noise, floor, unit, tried)
+    return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
 
 
 def _noise(fitted: Fitted, target: Target) -> float:
@@ -327,7 +326,7 @@ def _significant(current: Fitted, candidate: Fitted, target: Target, threshold: 
     is one-sided over ``settings.chunks`` runs of samples in time."""
     if not current.mse - candidate.mse > threshold:
         return False
-    gain = target.weight * ((current.force - target.force) ** 2 - (candidate.force - target.force) ** 2)
+    gain = target.losses(current.force) - target.losses(candidate.force)
     runs = np.array([part.sum() for part in np.array_split(gain, settings.chunks)])
     won, lost = runs[runs > 0].sum(), -runs[runs < 0].sum()
     return bool(lost < settings.loss * won)
@@ -370,7 +369,11 @@ def full_mse(fitted: Fitted, target: Target) -> float:
 
 
 def choose_reconstruction(
-    record: MotionData, fitted: Fitted, left_out: NDArray[np.bool_], iterations: int = SCREEN
+    record: MotionData,
+    fitted: Fitted,
+    left_out: NDArray[np.bool_],
+    scale: float | None = None,
+    iterations: int = SCREEN,
 ) -> tuple[Reconstruction, Target, Scales, Fitted]:
     """The reconstruction under which ``fitted``'s structure, refitted (without the samples
     ``left_out``: gross errors, edges, reversals no model can place), predicts the log best over
@@ -381,7 +384,7 @@ def choose_reconstruction(
             target, scales = prepare(record, reconstruction)
         except DataError:
             continue
-        target = dataclasses.replace(target, weight=np.where(left_out, 0.0, target.weight))
+        target = dataclasses.replace(target, weight=np.where(left_out, 0.0, target.weight), scale=scale)
         refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
         error = full_mse(refitted, target)
         if best is None or error < best[0]:

@@ -22,6 +22,16 @@ from ..errors import ParameterError
 from .evaluate import Evaluation, evaluate
 from .structure import Scales, Structure, bounds, start
 
+#: The robust loss of scipy's least_squares used with a scale.
+LOSS = "cauchy"
+
+
+def robust(square: FloatArray, scale: float) -> FloatArray:
+    """scipy's ``cauchy`` loss of squared errors at ``scale``, in the units of a squared error."""
+    out: FloatArray = scale**2 * np.log1p(square / scale**2)
+    return out
+
+
 #: Iterations of one fit: enough for a candidate that starts at the model it extends.
 ITERATIONS = 60
 
@@ -64,8 +74,20 @@ class Target:
             rows &= np.arange(rows.size) % self.stride == 0
         return rows
 
+    scale: float | None = None
+    """With a scale, errors are counted robustly (``LOSS`` at this scale): a sample missed by far
+    more than the scale counts little more than one missed by the scale."""
+
+    def losses(self, model_force: FloatArray) -> FloatArray:
+        """Each sample's weighted loss: the squared error, or its robust form with a scale."""
+        square = (model_force - self.force) ** 2
+        if self.scale is not None:
+            square = robust(square, self.scale)
+        out: FloatArray = self.weight * square
+        return out
+
     def mse(self, model_force: FloatArray) -> float:
-        return float(np.sum(self.weight * (model_force - self.force) ** 2) / np.sum(self.weight))
+        return float(np.sum(self.losses(model_force)) / np.sum(self.weight))
 
 
 def fit(
@@ -127,9 +149,10 @@ def fit(
         theta = full(x0)
         final = evaluate(structure, scales, theta, target.motion, target.tau, None)
         return Fitted(structure, theta, final, target.mse(final.force), 1)
+    robustly = {} if target.scale is None else {"loss": LOSS, "f_scale": target.scale}
     result = least_squares(lambda x: both(x)[0], x0, jac=lambda x: both(x)[1], bounds=(low, high),
                            x_scale="jac", max_nfev=iterations, method="trf", ftol=1e-10, xtol=1e-10,
-                           gtol=1e-10)  # fmt: skip
+                           gtol=1e-10, **robustly)  # fmt: skip
     theta = full(result.x)
     final = evaluate(structure, scales, theta, target.motion, target.tau, None)
     return Fitted(structure, theta, final, target.mse(final.force), int(result.nfev))
