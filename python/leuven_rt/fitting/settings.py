@@ -11,7 +11,7 @@ import numbers
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from ..errors import InputError, shown, shown
+from ..errors import InputError, shown
 
 
 @dataclass(frozen=True, kw_only=True)
