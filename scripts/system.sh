@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by the scripts: what they install beyond Rust and Python, in one place. The system
 # packages, in one list, with `system_install`, which installs with apt-get (Debian, as root)
 # those that are missing; and cargo-c, with `cargo_c_install`.

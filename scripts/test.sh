@@ -18,7 +18,12 @@ finish() {
     # A run that stopped early ends the cargo-c build it started (its own process group).
     [ -z "$cargo_c" ] || kill -- -"$cargo_c" 2>/dev/null || true
     step "done"
-    printf '%s%6d s  in all\n' "$times" "$SECONDS"
+    # The CPU time of every command the run waited for: on a shared machine the wall time
+    # depends on the others' load, this much less.
+    times >"$work/times"
+    cpu="$(awk 'NR == 2 { split($0, t, /[ms ]+/); print int(t[1] * 60 + t[2] + t[3] * 60 + t[4]) }' "$work/times")"
+    printf '%s%6d s  in all (CPU, user + sys: %d s; load average now: %s)\n' "$times" "$SECONDS" \
+        "$cpu" "$(cut -d' ' -f1-3 /proc/loadavg)"
     rm -rf "$work"
 }
 trap finish EXIT
