@@ -302,9 +302,12 @@ def draw_case(split: str, index: int, seed_base: int = 0, quick: bool = False) -
     """The ``index``-th log of ``split``: sensors, excitation and truth drawn from its seed.
     The sensors' share (velocity column, rotary axis, noise model, dwell) follows the index,
     shifted by ``seed_base``, so that every part of a split holds each kind."""
-    recipe = RECIPES[split][index]
-    if seed_base < 0 or not 0 <= index < 100:
-        raise ValueError(f"`seed_base` must be >= 0 and `index` in [0, 100), got {seed_base} and {index}")
+    recipes = RECIPES[split]
+    if seed_base < 0:
+        raise ValueError(f"`seed_base` must be >= 0, got {seed_base}")
+    if not 0 <= index < len(recipes):  # at most 100: the seeds below stay apart
+        raise ValueError(f"`index` must be in [0, {len(recipes)}) for the {split} split, got {index}")
+    recipe = recipes[index]
     seed = 2 * (100 * seed_base + index) + SPLIT_PARITY[split]
     rng = np.random.default_rng(seed)
     turn = index + seed_base

@@ -225,3 +225,22 @@ def test_the_held_out_split_has_seeds_and_paths_of_its_own() -> None:
         assert {case.recipe.position for case in cases} >= {"ripple", "trend", "cogging"}
         hidden = {effect for case in cases for effect in case.recipe.hidden}
         assert hidden == CATALOGUE
+
+
+def test_an_existing_manifest_is_kept_and_a_negative_seed_base_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    manifest = tmp_path / "manifest.json"
+    manifest.write_text("[]\n")
+    assert family.main([str(tmp_path), "--quick"]) == 2
+    assert manifest.read_text() == "[]\n" and sorted(tmp_path.iterdir()) == [manifest]
+    assert "exists; give --force" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as exit_info:
+        family.main([str(tmp_path / "other"), "--seed-base", "-1"])
+    assert exit_info.value.code == 2
+    assert "--seed-base: must be >= 0, got -1" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="`seed_base` must be >= 0") as error:
+        family.draw_case("tuning", 0, seed_base=-1)
+    assert type(error.value) is ValueError
+    with pytest.raises(ValueError, match="`index` must be in \\[0, 24\\) for the tuning split, got 24"):
+        family.draw_case("tuning", 24)
