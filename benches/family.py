@@ -702,7 +702,9 @@ def _position_driven(case: Case, rng: np.random.Generator) -> tuple[Array, Array
         profile.rest(rng.uniform(0.05, 0.2))
         _reversal_legs(profile, case, rng, case.duration)
     v_fine = profile.velocity()
-    v_fine = v_fine[: (v_fine.size - 1) // SUBSTEPS * SUBSTEPS + 1]
+    # The log ends at its duration, in motion or not, as a recording does.
+    samples = min((v_fine.size - 1) // SUBSTEPS, round(case.duration / case.dt))
+    v_fine = v_fine[: samples * SUBSTEPS + 1]
     centre = rng.uniform(*case.axis.centre)
     x_fine = centre + np.concatenate(([0.0], np.cumsum(0.5 * (v_fine[1:] + v_fine[:-1]) * h)))
     a_fine = np.gradient(v_fine, h)
@@ -730,7 +732,7 @@ def _closed_loop(case: Case, rng: np.random.Generator) -> tuple[Array, Array, Ar
     excess) held with it. The log is the encoder, the true velocity and the actuator's force."""
     truth, dt = case.truth, case.dt
     reference = _closed_loop_reference(case, rng)
-    v_ref = reference.velocity()
+    v_ref = reference.velocity()[: round(case.duration / dt) + 1]
     centre = rng.uniform(*case.axis.centre)
     x_ref = centre + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
     a_ref = np.gradient(v_ref, dt)
