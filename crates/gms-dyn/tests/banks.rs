@@ -3,7 +3,9 @@
 //! touches and copies nothing but still checks dt.
 
 use gms_core::{Field, Scheme};
-use gms_dyn::{Error, ErrorKind, FrictionBank, Input, MassBank, Mechanics, RawElements, RawParams};
+use gms_dyn::{
+    Error, ErrorClass, FrictionBank, Input, MassBank, Mechanics, RawElements, RawParams,
+};
 
 fn set() -> gms_dyn::ParameterSet {
     let (w, delta) = ([1.0; 3], [1e-6, 2e-6, 4e-6]);
@@ -54,7 +56,7 @@ fn written_friction_states_are_checked_all_or_nothing() {
         ),
         "{refused:?}"
     );
-    assert_eq!(refused.kind(), ErrorKind::Input);
+    assert_eq!(refused.class(), ErrorClass::Input);
     let message = refused.to_string();
     assert!(
         message.starts_with("state of channel 1: `zeta[2]` must be within `Delta[2]` = 4e-6"),
@@ -77,7 +79,7 @@ fn written_friction_states_are_checked_all_or_nothing() {
             }
         }
     );
-    assert_eq!(refused.kind(), ErrorKind::Input);
+    assert_eq!(refused.class(), ErrorClass::Input);
 }
 
 #[test]
