@@ -131,7 +131,8 @@ fn friction_state(bank: &FrictionBank) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<boo
     (z, memory, last, has_last)
 }
 
-/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core): the
+/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core), or, without
+/// the `batch` feature (as the C library builds gms-dyn), all through gms-core's block calls: the
 /// forces are those of stepping each channel alone, and a rejected sample anywhere names its
 /// channel and sample and leaves every channel as it was.
 #[test]
