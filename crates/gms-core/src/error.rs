@@ -640,11 +640,15 @@ impl Error {
                 if field == Field::middle {
                     return Ok(());
                 }
+                let what = if field == Field::period {
+                    "its phase"
+                } else {
+                    "the position along the stroke"
+                };
                 write!(
                     f,
                     " must be at least 2^20 ulps of the largest position covered, max(|middle| \
-                     + half_stroke, 1) = {}, i.e. >= {}, got {}: its phase cannot be resolved \
-                     there",
+                     + half_stroke, 1) = {}, i.e. >= {}, got {}: {what} cannot be resolved there",
                     Shown(extent),
                     Shown(finest),
                     Shown(value)
