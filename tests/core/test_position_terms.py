@@ -188,7 +188,7 @@ def test_position_force_refusals_name_the_field(changes: dict[str, Any], field: 
 )
 def test_unresolvable_phases_are_refused(kind: type, changes: dict[str, Any], message: str) -> None:
     """Periods of 1e-12 or 1e-300 m were accepted, and Rust and Python's own formula then
-    disagreed (1.0489 against 1.0886 at 1e-300); gms-core now refuses them, and Python evaluates
+    disagreed at the first digit; gms-core now refuses them, and Python evaluates
     with gms-core, so there is one answer."""
     with pytest.raises(ParameterError, match=message):
         kind(**changes)
@@ -297,8 +297,8 @@ def test_terms_must_be_their_classes() -> None:
 
 @pytest.mark.parametrize("terms", [dict(level=screw()), dict(position_force=cogging())])
 def test_feedforward_terms_need_the_start_position(terms: dict[str, Any]) -> None:
-    """A feedforward compensator with a level started at x = 0 without a word (0.048 N·m off on a
-    Franka record); now it is refused, naming `x`, unless the start position is given."""
+    """A feedforward compensator with a level started at x = 0 without a word, out of phase with
+    the machine; now it is refused, naming `x`, unless the start position is given."""
     with pytest.raises(InputError, match=r"^`x`, the axis's start position, must be given"):
         Compensator(MAXWELL, DT, "feedforward", **terms)
     placed = Compensator(MAXWELL, DT, "feedforward", **terms, x=0.012)

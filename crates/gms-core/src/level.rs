@@ -25,8 +25,9 @@
 //! are in metres or radians). There an f64 position is resolved only to an ulp of the extent, so
 //! a period (or half stroke) must span at least 2²⁰ ulps of it, about a millionth of a period per
 //! representable step; 2²⁰ ulps of 1 are 2.3e-10 m. A finer one would be sampled by rounding,
-//! and two correct formulas (the reduced phase here, numpy's unreduced one) would disagree at
-//! the first digit: a period of 1e-300 gave 1.0489 here against numpy's 1.0886.
+//! and two correct formulas disagree at the first digit: at a period of 1e-300, x/P is a whole
+//! number in f64 for every |x| above 2^52·1e-300 ≈ 4.5e-285, so the reduced phase here is 0,
+//! while numpy's unreduced formula takes the cosine of a rounded angle of up to some 1e300 rad.
 //!
 //! **Bounded work.** One `sin` and one `cos` per ripple; the harmonics follow by the
 //! angle-addition recurrence (a rotation by the first harmonic's angle per harmonic), so an

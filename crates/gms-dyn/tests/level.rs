@@ -167,7 +167,7 @@ fn compensator_keeps_its_terms_and_position() {
 }
 
 /// A feedforward compensator with a term and no start position is refused, naming `x`: the
-/// terms would otherwise be evaluated from x = 0 (0.048 N·m off on a Franka record).
+/// terms would otherwise be evaluated from x = 0, out of phase with the machine.
 #[test]
 fn feedforward_terms_need_the_start_position() {
     let set = set();
