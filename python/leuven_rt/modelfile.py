@@ -164,12 +164,16 @@ def as_level(value: Any, key: str = "level") -> PositionLevel | None:
             value=len(ripples),
             bound=MAX_RIPPLES,
         )
-    return PositionLevel(
-        middle=middle,
-        half_stroke=half_stroke,
-        trend=(trend[0], trend[1]),
-        ripples=tuple(_ripple(f"{key}.ripples[{index}]", ripple) for index, ripple in enumerate(ripples)),
-    )
+    checked = tuple(_ripple(f"{key}.ripples[{index}]", ripple) for index, ripple in enumerate(ripples))
+    try:
+        return PositionLevel(
+            middle=middle, half_stroke=half_stroke, trend=(trend[0], trend[1]), ripples=checked
+        )
+    except ParameterError as error:
+        # gms-core's rules of the whole level (its depth, the resolution of its phase): a field
+        # is named under the key, as the checks above name theirs.
+        located = {} if error.field is None else {"field": f"{key}.{error.field}"}
+        raise ParameterError(f"`{key}`: {error}", **{**data_of(error), **located}) from None
 
 
 def _level_dict(level: PositionLevel) -> dict[str, Any]:

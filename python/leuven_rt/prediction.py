@@ -4,7 +4,7 @@ The model is run along the log's own motion, the way a compensator in observer m
 it: the position is the zero-phase filtered position of the log (the derivative estimate the
 identification uses, :func:`leuven_rt.data.estimate_derivatives`, with its default cutoff), and
 
-    friction = factor(x)·(F − σ2·v) + σ2·v,    f_model = friction + offset + inertia·a,
+    friction = factor(x)·(F − σ2(v)·v) + σ2(v)·v,    f_model = friction + offset + inertia·a,
 
 where F is the plain model along x (:func:`leuven_rt.simulate_position`), v the model's own
 velocity (v₀ = 0, vₖ = (xₖ − xₖ₋₁)/dt), factor(x) the position-dependent level (1 without one)

@@ -276,6 +276,49 @@ RUST = [
         id="deep",
     ),
     pytest.param(
+        lambda: lr.PositionForce(ripples=(lr.level.Ripple(1e-12, (0.1,), (0.0,)),)),
+        ParameterError,
+        # The bound is the finest period resolved: 2^20 ulps of max(|middle| + half_stroke, 1) = 1.
+        {
+            "kind": "phase_unresolved",
+            "field": "ripples[0].period",
+            "value": 1e-12,
+            "bound": 2.0**-32,
+            "index": 0,
+        },
+        id="period-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.level.PositionLevel(half_stroke=1e-300),
+        ParameterError,
+        {"kind": "phase_unresolved", "field": "half_stroke", "value": 1e-300, "bound": 2.0**-32},
+        id="half-stroke-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.level.PositionLevel(middle=1e12, half_stroke=1e-6),
+        ParameterError,
+        {"kind": "phase_unresolved", "field": "middle", "value": 1e12, "bound": None},
+        id="middle-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.Params(**maxwell(sigma2_neg=-1.0)),
+        ParameterError,
+        {"kind": "negative", "field": "sigma2_neg", "value": -1.0},
+        id="sigma2_neg",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))),
+        InputError,
+        {"kind": "missing", "field": "x", "value": None},
+        id="start-position",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, "observer").step_trajectory(0.0, np.nan),
+        InputError,
+        {"kind": "not_finite", "field": "x", "sample": 0},
+        id="step-trajectory",
+    ),
+    pytest.param(
         lambda: lr.simulate(STIFF, DIVERGING, 1e-2, "explicit"),
         DivergenceError,
         {"kind": "diverged", "field": None, "value": None},
@@ -403,6 +446,79 @@ PYTHON = [
         id="version",
     ),
     pytest.param(
+        lambda: lr.simulate(MAXWELL, [0.0, 0.0], DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))),
+        InputError,
+        {"kind": "missing", "field": "x"},
+        id="simulate-no-x",
+    ),
+    pytest.param(
+        lambda: lr.simulate(MAXWELL, [0.0, 0.0], DT, x=[0.0, 0.0]),
+        InputError,
+        {"kind": "not_applicable", "field": "x"},
+        id="simulate-x-alone",
+    ),
+    pytest.param(
+        lambda: lr.simulate(
+            MAXWELL, [0.0, 0.0], DT, x=[0.0], position_force=lr.PositionForce(trend=(1.0, 0.0))
+        ),
+        InputError,
+        {"kind": "shape", "field": "x", "expected": (2,), "got": (1,)},
+        id="simulate-x-shape",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(
+            MAXWELL, [0.0, 0.0], DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))
+        ),
+        InputError,
+        {"kind": "missing", "field": "x"},
+        id="reference-no-x",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(MAXWELL, [0.0, 0.0], DT, x=[0.0, 0.0]),
+        InputError,
+        {"kind": "not_applicable", "field": "x"},
+        id="reference-x-alone",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(
+            MAXWELL, [0.0, 0.0], DT, x=[0.0], position_force=lr.PositionForce(trend=(1.0, 0.0))
+        ),
+        InputError,
+        {"kind": "shape", "field": "x", "expected": (1, 2), "got": (1, 1)},
+        id="reference-x-shape",
+    ),
+    pytest.param(
+        lambda: lr.PositionForce.from_dict([]),  # type: ignore[arg-type]
+        ParameterError,
+        {"kind": "wrong_type", "value": []},
+        id="position-force-list",
+    ),
+    pytest.param(
+        lambda: lr.PositionForce.from_dict({"amplitude": 1.0}),
+        ParameterError,
+        {"kind": "unknown_key", "field": "amplitude", "got": ["amplitude"]},
+        id="position-force-key",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, position_force="cogging", x=0.0),  # type: ignore[arg-type]
+        ParameterError,
+        {"kind": "wrong_type", "field": "position_force", "value": "cogging"},
+        id="position-force-type",
+    ),
+    pytest.param(
+        lambda: lr.ModelFile.from_dict(
+            {
+                "format": "leuven-rt model",
+                "version": 1,
+                "friction": MAXWELL,
+                "level": {"ripples": [{"period": 1e-12, "cos": [0.1], "sin": [0.0]}]},
+            }
+        ),
+        ParameterError,
+        {"kind": "phase_unresolved", "field": "level.ripples[0].period", "value": 1e-12, "index": 0},
+        id="model-file-phase",
+    ),
+    pytest.param(
         lambda: as_motion_data({"t": np.arange(50.0), "f": np.zeros(50)}),
         DataError,
         {"kind": "missing_column", "field": "x", "expected": ["t", "x", "f"], "got": ["f", "t"]},
@@ -472,3 +588,40 @@ def test_a_second_thread_gets_the_data_of_concurrent_use() -> None:
     error = errors[0]
     assert (error.kind, error.field) == ("concurrent_use", None)
     assert str(error).startswith("this LeuvenModel is in use by another thread")
+
+
+class _Reentrant:
+    """A number whose conversion calls ``call`` while the compensator is inside ``step``."""
+
+    def __init__(self, call: Any) -> None:
+        self.call, self.raised = call, None
+
+    def __float__(self) -> float:
+        try:
+            self.call()
+        except ConcurrentUseError as error:
+            self.raised = error
+        return 0.0
+
+
+@pytest.mark.parametrize(
+    "method",
+    [
+        lambda c: c.step_trajectory(0.0, 0.0),
+        lambda c: c.set_position(0.0),
+        lambda c: c.position,
+        lambda c: c.reset(),
+    ],
+    ids=["step_trajectory", "set_position", "position", "reset"],
+)
+def test_the_compensators_calls_borrow_through_the_guard(method: Any) -> None:
+    """A call that meets the compensator inside another of its calls gets ConcurrentUseError with
+    its kind, never PyO3's bare 'Already borrowed' RuntimeError: every method borrows through
+    gms-py's guard (here the other call is ``step``, which holds the compensator while it converts
+    its argument)."""
+    compensator = lr.Compensator(MAXWELL, DT, position_force=lr.PositionForce(trend=(1.0, 0.0)), x=0.0)
+    inner = _Reentrant(lambda: method(compensator))
+    compensator.step(inner)  # type: ignore[arg-type]
+    assert isinstance(inner.raised, ConcurrentUseError)
+    assert (inner.raised.kind, inner.raised.field) == ("concurrent_use", None)
+    assert compensator.position == 0.0  # nothing changed; the outer step moved at v = 0
