@@ -26,8 +26,16 @@ create_exception!(
 
 /// The exception of the class the error's kind calls for, with gms-dyn's message.
 pub fn raise(error: Error) -> PyErr {
-    let message = error.to_string();
-    match error.kind() {
+    of_kind(error.kind(), error.to_string())
+}
+
+/// A gms-fit error, sorted into the same classes by the same kinds.
+pub fn raise_fit(error: gms_fit::Error) -> PyErr {
+    of_kind(error.kind(), error.to_string())
+}
+
+fn of_kind(kind: ErrorKind, message: String) -> PyErr {
+    match kind {
         ErrorKind::Parameter => ParameterError::new_err(message),
         ErrorKind::Input => InputError::new_err(message),
         ErrorKind::Divergence => DivergenceError::new_err(message),
