@@ -133,7 +133,7 @@ impl<const N: usize> Bank<N> for Elements<N> {
         sticking: &mut [f64; N],
         d: &mut Vector<N>,
     ) -> Linearised {
-        let (mut force, mut slope, mut following) = (0.0, 0.0, 0.0);
+        let (mut force, mut slope, mut following, mut held) = (0.0, 0.0, 0.0, 0.0);
         let mut by_weight = [0.0; N];
         let mut holding = [0.0; N];
         for i in 0..N {
@@ -149,11 +149,13 @@ impl<const N: usize> Bank<N> for Elements<N> {
             let follows = carried.follows[i];
             following += if follows { stuck } else { 0.0 };
             holding[i] = if follows { 0.0 } else { stuck };
+            held += holding[i];
             // Fhᵢ = Wᵢ·clip(y − ζᵢ, ±Δᵢ)/Δᵢ: by Wᵢ, the clipped deflection over Δᵢ, sticking or not.
             by_weight[i] = kept * self.inverse_delta[i];
         }
-        // Gross sliding holds no element: nothing to sum.
-        let mut moved = if holding.iter().all(|&k| k == 0.0) {
+        // Gross sliding holds no element (every kᵢ > 0, so the sum is 0 only then): nothing
+        // to sum.
+        let mut moved = if held == 0.0 {
             Vector::ZERO
         } else {
             weighted_sum(&holding, &carried.own)
@@ -170,14 +172,21 @@ impl<const N: usize> Bank<N> for Elements<N> {
 
     #[inline]
     fn carry(&self, sticking: &[f64; N], carried: &mut ElementSensitivities<N>, s: &Vector<N>) {
-        let slots = carried.own.iter_mut().zip(carried.follows.iter_mut());
-        for (&stuck, (own, follows)) in sticking.iter().zip(slots) {
+        // Which elements stop following z, found without a branch per element (whether one
+        // sticks changes from step to step); an element stops following only at a reversal.
+        let mut stops = [false; N];
+        let mut any = false;
+        for ((&stuck, follows), stop) in sticking.iter().zip(&mut carried.follows).zip(&mut stops) {
             let sticks = stuck != 0.0;
-            if sticks && *follows {
-                // It stops following z: it keeps the sensitivity z had at step start.
+            *stop = sticks && *follows;
+            any |= *stop;
+            *follows = !sticks;
+        }
+        if any {
+            // It keeps the sensitivity z had at step start.
+            for (own, _) in carried.own.iter_mut().zip(stops).filter(|(_, stop)| *stop) {
                 *own = *s;
             }
-            *follows = !sticks;
         }
     }
 }
