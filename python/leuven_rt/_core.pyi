@@ -8,11 +8,13 @@ from numpy.typing import NDArray
 from typing_extensions import Self, disjoint_base
 
 __all__ = [
+    "ERROR_KINDS",
     "MAX_ELEMENTS",
     "MAX_HARMONICS",
     "MAX_ITERATIONS",
     "MAX_RIPPLES",
     "CompensatorEngine",
+    "ConcurrentUseError",
     "CoreLevel",
     "CoreParams",
     "DivergenceError",
@@ -33,13 +35,50 @@ MAX_ELEMENTS: int
 MAX_ITERATIONS: int
 MAX_RIPPLES: int
 MAX_HARMONICS: int
+ERROR_KINDS: list[str]
 
 _Scheme = Literal["implicit", "explicit"]
 _Mode = Literal["feedforward", "observer"]
 
-class ParameterError(ValueError): ...
-class InputError(ValueError): ...
-class DivergenceError(ValueError): ...
+class _ObjectInit:
+    """The errors' ``__init__`` is ``object.__init__`` at run time (``BaseException.__init__``
+    refuses keywords); ``__new__`` takes the arguments. A base of its own, so that type checkers
+    check calls against ``__new__``."""
+
+    def __init__(self) -> None: ...
+
+class _ErrorData(_ObjectInit):
+    """The data every error of the package carries (docs/errors.md#error-data)."""
+
+    kind: str | None
+    field: str | None
+    value: Any
+    bound: Any
+    index: int | None
+    sample: int | None
+    channel: int | None
+    expected: Any
+    got: Any
+    def __new__(
+        cls,
+        message: str,
+        /,
+        *,
+        kind: str | None = None,
+        field: str | None = None,
+        value: object = None,
+        bound: object = None,
+        index: int | None = None,
+        sample: int | None = None,
+        channel: int | None = None,
+        expected: object = None,
+        got: object = None,
+    ) -> Self: ...
+
+class ParameterError(_ErrorData, ValueError): ...
+class InputError(_ErrorData, ValueError): ...
+class DivergenceError(_ErrorData, ValueError): ...
+class ConcurrentUseError(_ErrorData, RuntimeError): ...
 
 class _ParamsLike(Protocol):
     """What the extension reads from a parameter set: the attributes of ``leuven_rt.Params``."""

@@ -15,7 +15,7 @@ from __future__ import annotations
 import sys
 from importlib.util import find_spec
 
-__all__ = ["MissingExtraError", "progress_wanted", "require"]
+__all__ = ["MissingExtraError", "require"]
 
 
 class MissingExtraError(ImportError):
@@ -43,10 +43,3 @@ def require(*packages: str, extra: str, needed_by: str = "this part of leuven-rt
             found = False
         if not found:
             raise MissingExtraError(package, extra, needed_by)
-
-
-def progress_wanted(progress: bool) -> bool:
-    """Whether to draw a progress bar: asked for, and stderr is a terminal (never in logs,
-    pipes or CI output)."""
-    isatty = getattr(sys.stderr, "isatty", None)
-    return progress and isatty is not None and bool(isatty())

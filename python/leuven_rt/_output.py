@@ -47,7 +47,12 @@ def image_format(path: str | PathLike[str], label: str = "figure") -> str:
         got = f"extension .{suffix}" if suffix else "no extension"
         raise OutputError(
             f"{label} {os.fspath(path)!s} has {got}: expected an image format that matplotlib "
-            f"writes, one of {', '.join('.' + name for name in image_formats())}"
+            f"writes, one of {', '.join('.' + name for name in image_formats())}",
+            kind="invalid_choice",
+            field=label,
+            value=os.fspath(path),
+            expected=sorted(image_formats()),
+            got=suffix,
         )
     return suffix
 
@@ -59,9 +64,13 @@ def _same_file(a: Path, b: Path) -> bool:
     return a.resolve() == b.resolve()
 
 
-def check_folder(folder: str | PathLike[str], label: str = "output folder") -> Path:
+def check_folder(
+    folder: str | PathLike[str], label: str = "output folder", *, field: str | None = None
+) -> Path:
     """``folder`` as a path, refused with :class:`OutputError` unless it is a folder or can be
-    made (its nearest existing ancestor is a writable folder). Nothing is created."""
+    made (its nearest existing ancestor is a writable folder). Nothing is created. ``label``
+    starts the message; ``field`` is the option the error names (``label`` when not given)."""
+    field = label if field is None else field
     folder = Path(folder)
     existing = folder.absolute()
     while not existing.exists() and existing != existing.parent:
@@ -70,10 +79,18 @@ def check_folder(folder: str | PathLike[str], label: str = "output folder") -> P
         raise OutputError(
             f"{label}: the folder {folder} cannot be made, {existing} is a file"
             if existing != folder.absolute()
-            else f"{label}: {folder} is a file, not a folder"
+            else f"{label}: {folder} is a file, not a folder",
+            kind="no_folder",
+            field=field,
+            value=os.fspath(folder),
         )
     if not os.access(existing, os.W_OK | os.X_OK):
-        raise OutputError(f"{label}: no permission to write in the folder {existing}")
+        raise OutputError(
+            f"{label}: no permission to write in the folder {existing}",
+            kind="no_permission",
+            field=field,
+            value=os.fspath(folder),
+        )
     return folder
 
 
@@ -87,7 +104,9 @@ def check_output(
 ) -> Path:
     """One output path, checked as the module docstring says; returns it as a :class:`Path`."""
     if not os.fspath(path):
-        raise OutputError(f"{label} must be a file name, got an empty path")
+        raise OutputError(
+            f"{label} must be a file name, got an empty path", kind="empty_path", field=label, value=""
+        )
     target = Path(path)
     if image:
         image_format(target, label)
@@ -95,13 +114,26 @@ def check_output(
         if _same_file(target, Path(source)):
             raise OutputError(
                 f"{label} {target} is the input file {source}: refusing to overwrite the input "
-                "(give another file name)"
+                "(give another file name)",
+                kind="is_input",
+                field=label,
+                value=os.fspath(target),
             )
     if target.is_dir():
-        raise OutputError(f"{label} {target} is a folder: expected a file name")
+        raise OutputError(
+            f"{label} {target} is a folder: expected a file name",
+            kind="is_folder",
+            field=label,
+            value=os.fspath(target),
+        )
     if (target.exists() or target.is_symlink()) and not force:
-        raise OutputError(f"{label} {target} exists: refusing to overwrite it (pass --force to replace it)")
-    check_folder(target.parent, f"{label} {target}")
+        raise OutputError(
+            f"{label} {target} exists: refusing to overwrite it (pass --force to replace it)",
+            kind="exists",
+            field=label,
+            value=os.fspath(target),
+        )
+    check_folder(target.parent, f"{label} {target}", field=label)
     return target
 
 
@@ -119,7 +151,12 @@ def check_outputs(
         target = check_output(path, label=label, inputs=sources, force=force, image=image)
         for other_label, other in checked:
             if _same_file(target, other):
-                raise OutputError(f"{label} and {other_label} are the same file {target}: give two names")
+                raise OutputError(
+                    f"{label} and {other_label} are the same file {target}: give two names",
+                    kind="same_file",
+                    field=label,
+                    value=os.fspath(target),
+                )
         checked.append((label, target))
     return [target for _, target in checked]
 
@@ -151,17 +188,29 @@ def write_files(files: Sequence[tuple[str | PathLike[str], Writer]]) -> list[Pat
                 target.parent.mkdir(parents=True, exist_ok=True)
                 temporary = _temporary(target)
             except OSError as error:
-                raise OutputError(f"cannot write {target}: {error.strerror or error}") from None
+                raise OutputError(
+                    f"cannot write {target}: {error.strerror or error}",
+                    kind="write_failed",
+                    value=os.fspath(target),
+                ) from None
             done.append((temporary, target))
             try:
                 write(temporary)
             except OSError as error:
-                raise OutputError(f"cannot write {target}: {error.strerror or error}") from None
+                raise OutputError(
+                    f"cannot write {target}: {error.strerror or error}",
+                    kind="write_failed",
+                    value=os.fspath(target),
+                ) from None
         for temporary, target in done:
             try:
                 os.replace(temporary, target)
             except OSError as error:
-                raise OutputError(f"cannot write {target}: {error.strerror or error}") from None
+                raise OutputError(
+                    f"cannot write {target}: {error.strerror or error}",
+                    kind="write_failed",
+                    value=os.fspath(target),
+                ) from None
     except BaseException:
         for temporary, _ in done:
             with suppress(OSError):

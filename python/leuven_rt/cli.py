@@ -8,12 +8,15 @@ matplotlib writes) and writes them atomically: see :mod:`leuven_rt._output`. A r
 The commands that read a log (``identify``, ``diagnose``, ``predict``) take ``--columns`` (the
 log's own column names) and ``--units`` (linear or rotary), and print each warning of the loader
 (resampling, units that look wrong) as ``leuven-rt <command>: warning: <message>`` on stderr.
+``identify`` and ``diagnose`` report their progress on stderr (:mod:`leuven_rt.progress`: a bar on
+a terminal, timestamped lines otherwise), never on stdout; ``--quiet`` silences it.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 import warnings
 from collections.abc import Sequence
@@ -33,6 +36,7 @@ from .errors import (
 
 if TYPE_CHECKING:
     from .data.records import MotionData
+    from .progress import Progress
 
 #: The documented errors (docs/errors.md): each ends a command with its one-line message and
 #: status 2. Anything else is a bug, and keeps its traceback.
@@ -42,6 +46,33 @@ FORCE_HELP = "replace output files that exist (an input file is never overwritte
 
 
 LOG_HELP = "the log: a .csv with columns t,x,f[,v] (SI units; see --columns) or an EMPS .mat file"
+
+
+def plain_text(text: str) -> str:
+    """A docstring's reStructuredText as a terminal shows it: roles such as ``:mod:`` and
+    double-backquoted literals lose their markup, and keep their text."""
+    return re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text).replace("``", "")
+
+
+class EffectNames:
+    """The names of the effect catalogue, for the ``--baseline`` help (argparse's ``%(effects)s``).
+    Looked up when the help is printed, not when the parser is built: the catalogue needs the
+    ``analysis`` extra, which ``leuven-rt --version`` and the lean core do not."""
+
+    def __str__(self) -> str:
+        try:
+            from .discrepancy.effects import CATALOGUE
+        except ImportError:  # the analysis extra is not installed
+            return "the effects of docs/effects.md (with leuven-rt[analysis])"
+        return ", ".join(CATALOGUE)
+
+
+def _baseline(parser: argparse.ArgumentParser, what: str) -> None:
+    """The ``--baseline`` option: ``what`` the effects are, and the names it takes."""
+    option = parser.add_argument(
+        "--baseline", default="coulomb,viscous", help=f"{what} (comma-separated, among %(effects)s)"
+    )
+    vars(option)["effects"] = EffectNames()  # argparse expands %(name)s from the option's attributes
 
 
 def _add_log_options(parser: argparse.ArgumentParser, units: str | None = "linear") -> None:
@@ -95,13 +126,22 @@ def _demo(arguments: argparse.Namespace) -> int:
     return 0
 
 
+def _progress(arguments: argparse.Namespace) -> Progress:
+    """The progress reporter of a long command: on stderr, nothing with ``--quiet``."""
+    from .progress import Progress
+
+    return Progress(f"leuven-rt {arguments.command}", "off" if arguments.quiet else "auto")
+
+
 def _diagnose(arguments: argparse.Namespace) -> int:
     from ._output import check_outputs
     from .discrepancy import diagnose
 
     if arguments.plot is not None:
         check_outputs([("--plot", arguments.plot, True)], inputs=[arguments.data], force=arguments.force)
-    diagnosis = diagnose(_load(arguments), arguments.baseline, progress=not arguments.json)
+    record = _load(arguments)
+    with _progress(arguments) as report:
+        diagnosis = diagnose(record, arguments.baseline, progress=report)
     if arguments.plot is not None:
         from .discrepancy.plot import plot_diagnosis
 
@@ -136,7 +176,8 @@ def _identify(arguments: argparse.Namespace) -> int:
         outputs.append(("--report", arguments.report, False))
     targets = check_outputs(outputs, inputs=[arguments.data], force=arguments.force)
     record = _load(arguments)
-    result = identify(record, arguments.baseline, progress=not arguments.quiet)
+    with _progress(arguments) as report:
+        result = identify(record, arguments.baseline, progress=report)
     texts = [result.model.to_json() + "\n", result.diagnosis.to_json() + "\n"]
     # Both files or neither: each is written beside its target and renamed once both are complete.
     write_files([(target, text_writer(text)) for target, text in zip(targets, texts, strict=False)])
@@ -161,7 +202,11 @@ def _predict(arguments: argparse.Namespace) -> int:
     model = ModelFile.load(arguments.model)
     if arguments.units is not None and arguments.units != model.units:
         raise InputError(
-            f"`--units` is {arguments.units!r}, but the model file {arguments.model} is {model.units!r}"
+            f"`--units` is {arguments.units!r}, but the model file {arguments.model} is {model.units!r}",
+            kind="units_mismatch",
+            field="--units",
+            value=arguments.units,
+            expected=model.units,
         )
     arguments.units = model.units
     prediction = predict(model, _load(arguments), cutoff=arguments.cutoff)
@@ -186,7 +231,7 @@ def _control(arguments: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``leuven-rt`` command."""
-    parser = argparse.ArgumentParser(prog="leuven-rt", description=__doc__)
+    parser = argparse.ArgumentParser(prog="leuven-rt", description=plain_text(__doc__ or ""))
     parser.add_argument("--version", action="version", version=f"leuven-rt {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
@@ -219,11 +264,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         "-o", "--output", required=True, help="where to write the model file (JSON, docs/data-and-reports.md)"
     )
     identify.add_argument("--report", help="also write the diagnosis report here (JSON)")
-    identify.add_argument(
-        "--baseline", default="coulomb,viscous", help="effects the model starts from (comma-separated)"
-    )
+    _baseline(identify, "effects the model starts from")
     identify.add_argument("--force", action="store_true", help=FORCE_HELP)
-    identify.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    identify.add_argument(
+        "--quiet", action="store_true", help="no progress (on stderr) and no summary, only the warnings"
+    )
     _add_log_options(identify)
     identify.set_defaults(run=_identify)
     diagnose = commands.add_parser(
@@ -231,14 +276,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         help="name the catalogue effects a friction model misses in a log, and how much each helps",
     )
     diagnose.add_argument("data", help=LOG_HELP)
-    diagnose.add_argument(
-        "--baseline", default="coulomb,viscous", help="effects already in the model (comma-separated)"
-    )
+    _baseline(diagnose, "effects already in the model")
     diagnose.add_argument(
         "--json",
         action="store_true",
-        help="print the JSON report of docs/data-and-reports.md#diagnosis-report (no progress bar)",
+        help="print the JSON report of docs/data-and-reports.md#diagnosis-report (progress stays on stderr)",
     )
+    diagnose.add_argument("--quiet", action="store_true", help="no progress (on stderr)")
     diagnose.add_argument(
         "--plot", help="write the residual figure here (.png, .pdf, .svg, … : any format matplotlib writes)"
     )

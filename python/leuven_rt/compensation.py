@@ -20,9 +20,9 @@ from __future__ import annotations
 from typing import cast
 
 from . import _core
-from ._checks import as_step, busy, guarded, is_borrow_error
+from ._checks import as_step
 from ._typing import Mode
-from .errors import InputError
+from .errors import InputError, shown
 from .level import PositionLevel, core_level
 from .params import Params, ParamsLike, as_params, core_params
 
@@ -54,7 +54,13 @@ class Compensator(_core.CompensatorEngine):
         level: PositionLevel | None = None,
     ) -> Compensator:
         if mode not in MODES:
-            raise InputError(f"`mode` must be 'feedforward' or 'observer', got {mode!r}")
+            raise InputError(
+                f"`mode` must be 'feedforward' or 'observer', got {shown(mode)!r}",
+                kind="invalid_choice",
+                field="mode",
+                value=mode,
+                expected=MODES,
+            )
         given = as_params(params)
         validated_level = None if level is None else core_level(level)
         # The engine gets the set and the level validated when they were built, and does not
@@ -66,34 +72,12 @@ class Compensator(_core.CompensatorEngine):
         engine._level = level
         return engine
 
-    def step(self, input: float) -> float:
-        """The force for this sample, from the desired velocity (feedforward) or the measured
-        position (observer)."""
-        try:
-            return _core.CompensatorEngine.step(self, input)
-        except RuntimeError as error:
-            if is_borrow_error(error):
-                raise busy(self) from None
-            raise
-
-    @guarded
-    def reset(self) -> None:
-        """Back to rest: relaxed hysteresis, output 0; the feedforward ``position`` stays."""
-        super().reset()
-
     # Narrower than the engine's on purpose: a Params or a mapping of its keys.
-    @guarded
     def set_params(self, params: ParamsLike) -> None:  # type: ignore[override]
         """Swaps in new parameters between two samples; the hysteresis force carries over."""
         given = as_params(params)
         super().set_params(core_params(given))
         self._params = given
-
-    @guarded
-    def set_position(self, x: float) -> None:
-        """Sets the position (finite) from which feedforward mode integrates the desired velocity
-        to evaluate the level; observer mode takes the position from its input."""
-        super().set_position(x)
 
     @property
     def params(self) -> Params:

@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._typing import FloatArray
-from .errors import ParameterError
+from .errors import ParameterError, data_of, shown
 from .params import _real, _reals
 
 #: Most ripples (distinct periods) a level holds.
@@ -68,7 +68,11 @@ class PositionLevel:
         trend = _reals("trend", self.trend)
         if len(trend) != 2:
             raise ParameterError(
-                f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}"
+                f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}",
+                kind="wrong_length",
+                field="trend",
+                expected=2,
+                got=len(trend),
             )
         object.__setattr__(self, "trend", trend)
         object.__setattr__(self, "ripples", _ripples(self.ripples))
@@ -102,7 +106,12 @@ def _ripples(ripples: Any) -> tuple[Ripple, ...]:
     """``ripples`` as a tuple of :class:`Ripple`; mappings with the keys period, cos, sin are
     turned into ripples (as a model file holds them)."""
     if isinstance(ripples, (str, bytes, bytearray, Mapping)) or not hasattr(ripples, "__iter__"):
-        raise ParameterError(f"`ripples` must be a sequence of Ripple, got {ripples!r:.80}")
+        raise ParameterError(
+            f"`ripples` must be a sequence of Ripple, got {shown(ripples)!r:.80}",
+            kind="wrong_type",
+            field="ripples",
+            value=ripples,
+        )
     out = []
     for index, ripple in enumerate(ripples):
         if isinstance(ripple, Ripple):
@@ -110,15 +119,31 @@ def _ripples(ripples: Any) -> tuple[Ripple, ...]:
         elif isinstance(ripple, Mapping):
             keys = {"period", "cos", "sin"}
             if set(ripple) != keys:
+                given = sorted(ripple, key=repr)
+                missing, unknown = sorted(keys - set(ripple)), sorted(set(ripple) - keys, key=repr)
                 raise ParameterError(
-                    f"`ripples[{index}]` must have the keys {sorted(keys)}, got {sorted(ripple, key=repr)}"
+                    f"`ripples[{index}]` must have the keys {sorted(keys)}, got {given}",
+                    kind="missing_key" if missing else "unknown_key",
+                    field=f"ripples[{index}].{(missing or unknown)[0]}",
+                    index=index,
+                    expected=sorted(keys),
+                    got=given,
                 )
             try:
                 out.append(Ripple(**ripple))
             except ParameterError as error:
-                raise ParameterError(f"`ripples[{index}]`: {error}") from None
+                raise ParameterError(
+                    f"`ripples[{index}]`: {error}",
+                    **{**data_of(error), "field": f"ripples[{index}].{error.field}"},
+                ) from None
         else:
-            raise ParameterError(f"`ripples[{index}]` must be a Ripple, got {ripple!r:.80}")
+            raise ParameterError(
+                f"`ripples[{index}]` must be a Ripple, got {shown(ripple)!r:.80}",
+                kind="wrong_type",
+                field=f"ripples[{index}]",
+                value=ripple,
+                index=index,
+            )
     return tuple(out)
 
 
@@ -126,6 +151,9 @@ def core_level(level: PositionLevel) -> Any:
     """What the engines take: the gms-core level validated when ``level`` was built."""
     if not isinstance(level, PositionLevel):
         raise ParameterError(
-            f"`level` must be a leuven_rt.level.PositionLevel or None, got {type(level).__name__}"
+            f"`level` must be a leuven_rt.level.PositionLevel or None, got {type(level).__name__}",
+            kind="wrong_type",
+            field="level",
+            value=level,
         )
     return vars(level)["_validated"]

@@ -26,16 +26,13 @@ from ._checks import (
     as_channels,
     as_signal,
     as_step,
-    busy,
     check_channels,
     check_scheme,
-    guarded,
-    is_borrow_error,
     real_array,
     require_finite,
 )
 from ._typing import FloatArray, Scheme
-from .errors import InputError
+from .errors import InputError, shown
 from .params import Params, ParamsLike, as_params, core_params
 
 __all__ = ["MassState", "MassSystem", "MassTrajectory", "simulate_mass"]
@@ -135,16 +132,6 @@ class MassSystem(_core.MassEngine):
         """The integration scheme, 'implicit' or 'explicit'."""
         return self._fixed[5]
 
-    def step(self, u: float, dt: float) -> tuple[float, float, float]:
-        """One step of a single-channel system with applied force ``u``: returns (friction,
-        position, velocity) at its end."""
-        try:
-            return _core.MassEngine.step(self, u, dt)
-        except RuntimeError as error:
-            if is_borrow_error(error):
-                raise busy(self) from None
-            raise
-
     @property
     def params(self) -> Params:
         """The parameters this system was built from."""
@@ -156,7 +143,6 @@ class MassSystem(_core.MassEngine):
             f"channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
         )
 
-    @guarded
     def place(self, position: ArrayLike = 0.0, velocity: ArrayLike = 0.0) -> None:
         """Restarts every channel at ``position``/``velocity`` (scalars or (B,)), with relaxed
         friction and the spring's far end at 0."""
@@ -169,21 +155,23 @@ class MassSystem(_core.MassEngine):
                 if isinstance(error, InputError):
                     raise
                 raise InputError(
-                    f"`{name}` must be a real number or have shape ({b},), got {value!r}"
+                    f"`{name}` must be a real number or have shape ({b},), got {shown(value)!r}",
+                    kind="shape",
+                    field=name,
+                    expected=(b,),
+                    got=np.shape(value),
                 ) from None
             row = as_channels(array, name, b)
             require_finite(row, name, True)  # _place takes the values as they are
             arrays.append(np.ascontiguousarray(row))
         self._place(*arrays)
 
-    @guarded
     def step_channels(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """One step of every channel with forces ``u`` of shape (B,); arrays of shape (B,)."""
         array = as_channels(u, "u", self.channels)
         out = self._run(np.ascontiguousarray(array[:, None]), as_step(dt))
         return MassTrajectory(out[0, :, 0], out[1, :, 0], out[2, :, 0])
 
-    @guarded
     def run(self, u: ArrayLike, dt: float) -> MassTrajectory:
         """Continues every channel over forces ``u``: (T,) for one channel or (B, T)."""
         array, one_dimensional = as_channel_signal(u, "u", self.channels)
@@ -193,25 +181,34 @@ class MassSystem(_core.MassEngine):
         return MassTrajectory(out[0], out[1], out[2])
 
     @property
-    @guarded
     def state(self) -> MassState:
         """A checkpoint of every channel."""
         return MassState(*self._get_state())
 
-    @guarded
     def set_state(self, state: MassState) -> None:
         """Restores a checkpoint taken from a system with the same channels and elements."""
         if not isinstance(state, MassState):
-            raise InputError(f"`state` must be a MassState, got {type(state).__name__}")
+            raise InputError(
+                f"`state` must be a MassState, got {type(state).__name__}",
+                kind="wrong_type",
+                field="state",
+                value=state,
+            )
         b, n = self.channels, self.elements
         arrays = []
         for name in ("position", "velocity", "anchor", "z", "zeta"):
             shape = (b, n) if name == "zeta" else (b,)
             array = np.asarray(real_array(getattr(state, name), f"state.{name}"), dtype=np.float64)
             if array.shape != shape:
-                raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
+                raise InputError(
+                    f"`state.{name}` must have shape {shape}, got shape {array.shape}",
+                    kind="shape",
+                    field=f"state.{name}",
+                    expected=shape,
+                    got=array.shape,
+                )
             if not np.isfinite(array).all():
-                raise InputError(f"`state.{name}` must be finite")
+                raise InputError(f"`state.{name}` must be finite", kind="not_finite", field=f"state.{name}")
             arrays.append(np.ascontiguousarray(array))
         self._set_state(*arrays)
 

@@ -13,15 +13,12 @@ from ._checks import (
     as_channel_signal,
     as_channels,
     as_step,
-    busy,
     check_channels,
     check_scheme,
-    guarded,
-    is_borrow_error,
     real_array,
 )
 from ._typing import FloatArray, Scheme
-from .errors import InputError
+from .errors import InputError, shown
 from .params import Params, ParamsLike, as_params, core_params
 
 
@@ -59,7 +56,8 @@ class LeuvenModel(_core.Engine):
 
     A model is one object of state: calling it from a second thread while one is inside ``run``
     (which releases the GIL) raises :class:`~leuven_rt.errors.ConcurrentUseError` and changes
-    nothing.
+    nothing. ``step``, ``step_position`` and ``reset`` are the engine's own (Rust, no Python frame
+    in between).
     """
 
     _params: Params
@@ -90,29 +88,6 @@ class LeuvenModel(_core.Engine):
         """The integration scheme, 'implicit' or 'explicit'."""
         return self._shape[2]
 
-    def step(self, v: float, dt: float) -> float:
-        """One step of a single-channel model with velocity ``v``; returns the force."""
-        try:
-            return _core.Engine.step(self, v, dt)
-        except RuntimeError as error:
-            if is_borrow_error(error):
-                raise busy(self) from None
-            raise
-
-    def step_position(self, x: float, dt: float) -> float:
-        """One step of a single-channel model with position ``x``; returns the force."""
-        try:
-            return _core.Engine.step_position(self, x, dt)
-        except RuntimeError as error:
-            if is_borrow_error(error):
-                raise busy(self) from None
-            raise
-
-    @guarded
-    def reset(self) -> None:
-        """Relaxes every channel: z = 0, every element at rest, no previous position."""
-        super().reset()
-
     @property
     def params(self) -> Params:
         """The parameters this model was built from."""
@@ -121,35 +96,41 @@ class LeuvenModel(_core.Engine):
     def __repr__(self) -> str:
         return f"LeuvenModel(channels={self.channels}, elements={self.elements}, scheme={self.scheme!r})"
 
-    @guarded
     def step_channels(self, v: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with velocities ``v`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(v, "v", self.channels), as_step(dt), False)
 
-    @guarded
     def step_channels_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """One step of every channel with positions ``x`` of shape (B,); returns (B,) forces."""
         return self._step_channels(as_channels(x, "x", self.channels), as_step(dt), True)
 
-    @guarded
     def run(self, v: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over velocities ``v``: (T,) for one channel or (B, T)."""
         return self._run_signal(v, "v", dt)
 
-    @guarded
     def run_position(self, x: ArrayLike, dt: float) -> FloatArray:
         """Continues every channel over positions ``x``: (T,) for one channel or (B, T)."""
         return self._run_signal(x, "x", dt)
 
-    @guarded
     def trace_position(self, x: ArrayLike, dt: float) -> Trace:
         """Continues the single channel over positions ``x`` of shape (T,), recording the
         deflection z after every sample as well as the force."""
         if self.channels != 1:
-            raise InputError(f"`trace_position` runs one channel, this model has {self.channels}")
+            raise InputError(
+                f"`trace_position` runs one channel, this model has {self.channels}",
+                kind="channel_mismatch",
+                expected=1,
+                got=self.channels,
+            )
         array, one_dimensional = as_channel_signal(x, "x", 1)
         if not one_dimensional:
-            raise InputError(f"`x` must have shape (T,) for `trace_position`, got {np.shape(x)}")
+            raise InputError(
+                f"`x` must have shape (T,) for `trace_position`, got {np.shape(x)}",
+                kind="shape",
+                field="x",
+                expected="(T,)",
+                got=np.shape(x),
+            )
         force, z = self._run_position_deflection(np.ascontiguousarray(array[0]), as_step(dt))
         return Trace(force, z)
 
@@ -159,16 +140,19 @@ class LeuvenModel(_core.Engine):
         return out[0] if one_dimensional else out
 
     @property
-    @guarded
     def state(self) -> ModelState:
         """A checkpoint of every channel."""
         return ModelState(*self._get_state())
 
-    @guarded
     def set_state(self, state: ModelState) -> None:
         """Restores a checkpoint taken from a model with the same channels and elements."""
         if not isinstance(state, ModelState):
-            raise InputError(f"`state` must be a ModelState, got {type(state).__name__}")
+            raise InputError(
+                f"`state` must be a ModelState, got {type(state).__name__}",
+                kind="wrong_type",
+                field="state",
+                value=state,
+            )
         b, n = self.channels, self.elements
         expected = {"z": (b,), "zeta": (b, n), "last_position": (b,), "has_last_position": (b,)}
         arrays: dict[str, Any] = {}
@@ -185,15 +169,28 @@ class LeuvenModel(_core.Engine):
                 if isinstance(error, InputError):
                     raise
                 raise InputError(
-                    f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, got {value!r}"
+                    f"`state.{name}` must hold {'booleans' if boolean else 'real numbers'}, "
+                    f"got {shown(value)!r}",
+                    kind="wrong_type" if boolean else "not_real",
+                    field=f"state.{name}",
+                    value=value,
                 ) from None
             if boolean and np.asarray(value).dtype != np.bool_:
                 raise InputError(
-                    f"`state.{name}` must be a boolean array, got dtype {np.asarray(value).dtype}"
+                    f"`state.{name}` must be a boolean array, got dtype {np.asarray(value).dtype}",
+                    kind="wrong_type",
+                    field=f"state.{name}",
+                    value=value,
                 )
             if array.shape != shape:
-                raise InputError(f"`state.{name}` must have shape {shape}, got shape {array.shape}")
+                raise InputError(
+                    f"`state.{name}` must have shape {shape}, got shape {array.shape}",
+                    kind="shape",
+                    field=f"state.{name}",
+                    expected=shape,
+                    got=array.shape,
+                )
             if not boolean and not np.isfinite(array).all():
-                raise InputError(f"`state.{name}` must be finite")
+                raise InputError(f"`state.{name}` must be finite", kind="not_finite", field=f"state.{name}")
             arrays[name] = np.ascontiguousarray(array)
         self._set_state(arrays["z"], arrays["zeta"], arrays["last_position"], arrays["has_last_position"])

@@ -22,7 +22,7 @@ from typing import Any
 from numpy.typing import ArrayLike
 
 from . import _core
-from ._checks import as_log, as_real_list, busy, guarded, is_borrow_error, real_number
+from ._checks import as_log, as_real_list, real_number
 from ._typing import FloatArray
 from .errors import InputError, ParameterError
 
@@ -89,33 +89,6 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         """The fixed break deflections Δᵢ [m] (a copy)."""
         return list(self._fixed[1])
 
-    @property
-    @guarded
-    def covariance_trace(self) -> float:
-        """trace(P) now."""
-        return super().covariance_trace
-
-    @property
-    @guarded
-    def covariance_resets(self) -> int:
-        """How many times the covariance left its range and was reset since construction or reset."""
-        return super().covariance_resets
-
-    def update(self, x: float, v: float, f: float) -> float:
-        """One sample of position ``x``, velocity ``v`` and force ``f``; returns the a priori
-        prediction error f − f̂ (a rejected sample changes nothing)."""
-        try:
-            return _core.OnlineIdentifier.update(self, x, v, f)
-        except RuntimeError as error:
-            if is_borrow_error(error):
-                raise busy(self) from None
-            raise
-
-    @guarded
-    def reset(self) -> None:
-        """Back to the state of construction."""
-        super().reset()
-
     def __repr__(self) -> str:
         return f"OnlineIdentifier(elements={self.elements}, estimate={self.estimate_dict()!r})"
 
@@ -126,19 +99,16 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         return tuple(f"W[{i}]" for i in range(self.elements)) + EXTRA_TERMS
 
     @property
-    @guarded
     def estimate(self) -> FloatArray:
         """A copy of the current estimate, shape (N + 3,), in the order of :attr:`names`."""
         return self._estimate()
 
     @property
-    @guarded
     def covariance(self) -> FloatArray:
         """A copy of the covariance P, shape (N + 3, N + 3); times the noise variance, it is the
         covariance of the estimate."""
         return self._covariance()
 
-    @guarded
     def run(self, x: ArrayLike, v: ArrayLike, f: ArrayLike) -> FloatArray:
         """Continues over a log of positions ``x`` [m], velocities ``v`` [m/s] and forces ``f``
         [N], each of shape (T,); returns the estimate after each sample, shape (T, N + 3).
@@ -148,7 +118,6 @@ class OnlineIdentifier(_core.OnlineIdentifier):
         xs, vs, fs = as_log(x, v, f)
         return self._run(xs, vs, fs)
 
-    @guarded
     def predict(self, x: float, v: float) -> float:
         """The force that the current estimate predicts for position ``x`` and velocity ``v``,
         with the elements moved from where the last update left them; nothing changes."""

@@ -9,14 +9,14 @@ takes it without checking it again.
 from __future__ import annotations
 
 import numbers
+import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, fields
-from os import PathLike
 from typing import Any
 
 from . import _core
 from ._checks import real_array
-from .errors import ParameterError
+from .errors import ParameterError, data_of, shown
 
 #: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
 #: of :class:`Params`; looked up by name so that it types as ``Any`` whether or not _core.pyi lists it.
@@ -26,34 +26,60 @@ _CoreParams: Any = vars(_core)["CoreParams"]
 REQUIRED_KEYS = ("Fc", "Fs", "Vs", "delta", "n")
 
 
-def _real(key: str, value: Any) -> float:
+def _real(key: str, value: Any, index: int | None = None) -> float:
+    """``value`` as a float; ``key`` names it, with its ``index`` in a sequence when it has one."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"`{key}` must be a real number, got {value!r:.80}")
+        raise ParameterError(
+            f"`{key}` must be a real number, got {shown(value)!r:.80}",
+            kind="not_real",
+            field=key,
+            value=value,
+            index=index,
+        )
     try:
         return float(value)
     except OverflowError:  # an integer beyond the float range (a JSON file may hold one)
         raise ParameterError(
-            f"`{key}` must be finite, got an integer of {len(str(value))} digits, beyond the float range"
+            f"`{key}` must be finite, got an integer of {len(str(value))} digits, beyond the float range",
+            kind="not_finite_value",
+            field=key,
+            value=value,
+            index=index,
         ) from None
 
 
 def _reals(key: str, values: Any) -> tuple[float, ...]:
-    if not isinstance(values, Sequence) and not hasattr(values, "__array__"):
-        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r:.80}")
-    if isinstance(values, (str, bytes, bytearray)):
-        raise ParameterError(f"`{key}` must be a sequence of real numbers, got {values!r:.80}")
+    if isinstance(values, (str, bytes, bytearray)) or (
+        not isinstance(values, Sequence) and not hasattr(values, "__array__")
+    ):
+        raise ParameterError(
+            f"`{key}` must be a sequence of real numbers, got {shown(values)!r:.80}",
+            kind="not_real",
+            field=key,
+            value=values,
+        )
     if hasattr(values, "__array__"):  # numpy and friends: the dtype says what the items are
         array = real_array(values, key, ParameterError)
         if array.ndim != 1:
             raise ParameterError(
-                f"`{key}` must be a flat sequence of real numbers, got shape {array.shape}: {values!r:.80}"
+                f"`{key}` must be a flat sequence of real numbers, got shape {array.shape}: "
+                f"{shown(values)!r:.80}",
+                kind="shape",
+                field=key,
+                expected="(N,)",
+                got=array.shape,
             )
         items = array.tolist()
     else:
         items = list(values)
     if any(isinstance(item, (list, tuple)) for item in items):
-        raise ParameterError(f"`{key}` must be a flat sequence of real numbers, got {values!r:.80}")
-    return tuple(_real(f"{key}[{index}]", item) for index, item in enumerate(items))
+        raise ParameterError(
+            f"`{key}` must be a flat sequence of real numbers, got {shown(values)!r:.80}",
+            kind="shape",
+            field=key,
+            value=values,
+        )
+    return tuple(_real(f"{key}[{index}]", item, index) for index, item in enumerate(items))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -91,7 +117,11 @@ class Params:
                 object.__setattr__(self, key, _real(key, getattr(self, key)))
         if (self.W is None) != (self.Delta is None):
             given, missing = ("W", "Delta") if self.Delta is None else ("Delta", "W")
-            raise ParameterError(f"`{given}` was given without `{missing}`: give both or neither")
+            raise ParameterError(
+                f"`{given}` was given without `{missing}`: give both or neither",
+                kind="missing_key",
+                field=missing,
+            )
         if self.W is not None and self.Delta is not None:
             object.__setattr__(self, "W", _reals("W", self.W))
             object.__setattr__(self, "Delta", _reals("Delta", self.Delta))
@@ -137,14 +167,30 @@ class Params:
     def from_dict(cls, mapping: Mapping[str, Any]) -> Params:
         """Builds from a mapping with the keys of docs/parameters.md#keys; unknown or missing keys raise."""
         if not isinstance(mapping, Mapping):
-            raise ParameterError(f"parameters must be a mapping, got {type(mapping).__name__}")
+            raise ParameterError(
+                f"parameters must be a mapping, got {type(mapping).__name__}",
+                kind="wrong_type",
+                value=mapping,
+            )
         known = {field.name for field in fields(cls)}
         unknown = sorted(set(mapping) - known, key=repr)
         if unknown:
-            raise ParameterError(f"unknown parameter keys {unknown}; expected keys among {sorted(known)}")
+            raise ParameterError(
+                f"unknown parameter keys {unknown}; expected keys among {sorted(known)}",
+                kind="unknown_key",
+                field=str(unknown[0]),
+                expected=sorted(known),
+                got=sorted(mapping, key=repr),
+            )
         missing = [key for key in REQUIRED_KEYS if key not in mapping]
         if missing:
-            raise ParameterError(f"missing parameter keys {missing}")
+            raise ParameterError(
+                f"missing parameter keys {missing}",
+                kind="missing_key",
+                field=missing[0],
+                expected=list(REQUIRED_KEYS),
+                got=sorted(mapping, key=repr),
+            )
         return cls(**mapping)
 
     def to_json(self) -> str:
@@ -161,34 +207,46 @@ class Params:
         try:
             mapping = json.loads(text)
         except (TypeError, json.JSONDecodeError, UnicodeDecodeError) as error:
-            raise ParameterError(f"parameters must be JSON text of an object: {error}") from None
+            raise ParameterError(
+                f"parameters must be JSON text of an object: {error}", kind="not_json"
+            ) from None
         except RecursionError:
-            raise ParameterError("parameters must be JSON text of an object: nested too deeply") from None
+            raise ParameterError(
+                "parameters must be JSON text of an object: nested too deeply", kind="not_json"
+            ) from None
         except ValueError as error:  # e.g. an integer of more digits than Python converts
-            raise ParameterError(f"parameters must be JSON text of an object: {error}") from None
+            raise ParameterError(
+                f"parameters must be JSON text of an object: {error}", kind="not_json"
+            ) from None
         return cls.from_dict(mapping)
 
-    def save(self, path: str | PathLike[str]) -> None:
+    def save(self, path: str | os.PathLike[str]) -> None:
         """Writes the parameter file, atomically: a failure leaves no partial file behind."""
         from ._output import write_text
 
         write_text(path, self.to_json() + "\n")
 
     @classmethod
-    def load(cls, path: str | PathLike[str]) -> Params:
+    def load(cls, path: str | os.PathLike[str]) -> Params:
         """Reads a parameter file (UTF-8 JSON); a file that cannot be read or decoded raises
         :class:`ParameterError` naming it."""
         try:
             with open(path, encoding="utf-8") as file:
                 text = file.read()
         except UnicodeDecodeError as error:
-            raise ParameterError(f"parameter file {path} is not UTF-8 text: {error}") from None
+            raise ParameterError(
+                f"parameter file {path} is not UTF-8 text: {error}", kind="not_text", value=os.fspath(path)
+            ) from None
         except OSError as error:
-            raise ParameterError(f"cannot read parameter file {path}: {error.strerror or error}") from None
+            raise ParameterError(
+                f"cannot read parameter file {path}: {error.strerror or error}",
+                kind="unreadable_file",
+                value=os.fspath(path),
+            ) from None
         try:
             return cls.from_json(text)
         except ParameterError as error:
-            raise ParameterError(f"{path}: {error}") from None
+            raise ParameterError(f"{path}: {error}", **data_of(error)) from None
 
 
 #: A parameter set: a :class:`Params`, or a mapping with its keys.
@@ -201,7 +259,12 @@ def as_params(params: ParamsLike) -> Params:
         return params
     if isinstance(params, Mapping):
         return Params.from_dict(params)
-    raise ParameterError(f"`params` must be a leuven_rt.Params or a mapping, got {type(params).__name__}")
+    raise ParameterError(
+        f"`params` must be a leuven_rt.Params or a mapping, got {type(params).__name__}",
+        kind="wrong_type",
+        field="params",
+        value=params,
+    )
 
 
 def core_params(params: ParamsLike) -> Any:

@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ._checks import real_number
 from ._typing import FloatArray
 from .data.records import DataLike, as_motion_data
 from .data.signals import estimate_derivatives
@@ -99,16 +98,21 @@ def predict(
 
     ``columns``: the log's names for ``t``, ``x``, ``f``, ``v``. ``units``: the log's kind of axis,
     which must be the model's (default: the model's). ``cutoff``: the position filter's cutoff
-    [Hz] (default a tenth of the Nyquist frequency, as for identification).
+    [Hz] (default a tenth of the Nyquist frequency, as for identification); one the record does
+    not support is refused (:func:`leuven_rt.data.signals.check_cutoff`).
     """
     chosen = as_model_file(model)
     kind = chosen.units if units is None else check_units(units, error=DataError)
     if kind != chosen.units:
         raise DataError(
-            f"`units` is {kind!r}, but the model is {chosen.units!r}: a model fits one kind of axis"
+            f"`units` is {kind!r}, but the model is {chosen.units!r}: a model fits one kind of axis",
+            kind="units_mismatch",
+            field="units",
+            value=kind,
+            expected=chosen.units,
         )
     record = as_motion_data(data, columns=columns, units=kind)
-    derivatives = estimate_derivatives(record, None if cutoff is None else real_number(cutoff, "cutoff"))
+    derivatives = estimate_derivatives(record, cutoff)
     dt = record.dt
     x = derivatives.x
     friction, f_model = model_forces(chosen, x, derivatives.a, dt)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any, Literal, NamedTuple
 
-from .errors import InputError
+from .errors import ErrorClass, InputError, shown
 
 #: The kind of axis: ``"linear"`` (m, m/s, N) or ``"rotary"`` (rad, rad/s, N·m).
 Units = Literal["linear", "rotary"]
@@ -34,11 +34,17 @@ _NAMES: dict[Units, UnitNames] = {
 }
 
 
-def check_units(value: Any, name: str = "units", error: type[ValueError] = InputError) -> Units:
+def check_units(value: Any, name: str = "units", error: ErrorClass = InputError) -> Units:
     """``value`` if it is ``"linear"`` or ``"rotary"``; otherwise ``error`` naming ``name``."""
     if isinstance(value, str) and value in UNITS:
         return "linear" if value == "linear" else "rotary"
-    raise error(f"`{name}` must be 'linear' or 'rotary', got {value!r:.80}")
+    raise error(
+        f"`{name}` must be 'linear' or 'rotary', got {shown(value)!r:.80}",
+        kind="invalid_choice",
+        field=name,
+        value=value,
+        expected=UNITS,
+    )
 
 
 def unit_names(units: Units) -> UnitNames:

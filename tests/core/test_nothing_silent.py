@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import datetime
 import json
+import re
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -56,8 +57,11 @@ def test_signals_that_are_not_real_numbers_are_refused(
     """Text, bytes, bytearray, booleans, dates, structured records, objects and masked arrays are
     refused with InputError naming the argument and the dtype that came; before, they were
     simulated as numbers (a masked array lost its mask)."""
-    with pytest.raises(InputError, match=message):
+    with pytest.raises(InputError, match=message) as refused:
         call(signal)
+    error = refused.value
+    assert error.kind == "not_real" and error.field in ("v", "x", "u") and error.value is signal
+    assert str(error).startswith(f"`{error.field}` ")
 
 
 @pytest.mark.parametrize(
@@ -76,20 +80,32 @@ def test_signals_that_are_not_real_numbers_are_refused(
 def test_parameter_sequences_that_are_not_real_numbers_are_refused(W: Any, message: str) -> None:
     """W given as a bytearray (was read as bytes 1, 1, 1, 1), a 0-d array (was a TypeError), booleans,
     text, a masked array or a huge integer (was an OverflowError) raise ParameterError naming W."""
-    with pytest.raises(ParameterError, match=message):
+    with pytest.raises(ParameterError, match=message) as refused:
         lr.Params(**{**MAXWELL, "W": W})
+    assert refused.value.field in ("W", "W[1]")
+    assert refused.value.kind in ("not_real", "shape", "not_finite_value")
 
 
 def test_huge_integers_are_parameter_and_input_errors() -> None:
     """An integer beyond the float range is refused with the package's errors, not OverflowError."""
-    with pytest.raises(ParameterError, match=r"`Fc` must be finite, got an integer of 401 digits"):
+    with pytest.raises(ParameterError, match=r"`Fc` must be finite, got an integer of 401 digits") as refused:
         lr.Params(**{**MAXWELL, "Fc": 10**400})
-    with pytest.raises(InputError, match=r"`dt` must be finite and > 0, got an integer of 401 digits"):
+    assert (refused.value.kind, refused.value.field, refused.value.value) == (
+        "not_finite_value",
+        "Fc",
+        10**400,
+    )
+    with pytest.raises(
+        InputError, match=r"`dt` must be finite and > 0, got an integer of 401 digits"
+    ) as refused:
         lr.simulate(MAXWELL, V, 10**400)
-    with pytest.raises(InputError, match=r"`dt`"):
+    assert (refused.value.kind, refused.value.field) == ("not_positive", "dt")
+    with pytest.raises(InputError) as refused:
         lr.LeuvenModel(MAXWELL).step(1e-3, 10**400)
-    with pytest.raises(InputError, match=r"`cutoff` must be finite"):
+    assert (refused.value.kind, refused.value.field) == ("not_real", "dt")
+    with pytest.raises(InputError, match=r"`cutoff` must be finite") as refused:
         identify_staged(small_log(), cutoff=10**400)
+    assert (refused.value.kind, refused.value.field) == ("not_finite_value", "cutoff")
 
 
 @pytest.mark.parametrize(
@@ -106,8 +122,9 @@ def test_huge_integers_are_parameter_and_input_errors() -> None:
 def test_parameter_json_failures_are_parameter_errors(text: str, message: str) -> None:
     """Deep nesting (was RecursionError), huge integers (was OverflowError), numbers of more digits
     than Python converts (was ValueError) raise ParameterError."""
-    with pytest.raises(ParameterError, match=message):
+    with pytest.raises(ParameterError, match=message) as refused:
         lr.Params.from_json(text)
+    assert refused.value.kind in ("not_json", "not_finite_value", "wrong_type", "not_real")
 
 
 def test_a_parameter_file_that_is_not_utf8_is_a_parameter_error(tmp_path: Path) -> None:
@@ -115,41 +132,56 @@ def test_a_parameter_file_that_is_not_utf8_is_a_parameter_error(tmp_path: Path) 
     FileNotFoundError) raises ParameterError naming the file."""
     path = tmp_path / "p.json"
     path.write_text('{"Fc": 1.0}', encoding="utf-16")
-    with pytest.raises(ParameterError, match=rf"parameter file {path} is not UTF-8 text"):
+    with pytest.raises(ParameterError, match=rf"parameter file {path} is not UTF-8 text") as refused:
         lr.Params.load(path)
+    assert (refused.value.kind, refused.value.value) == ("not_text", str(path))
     path.write_bytes('{"Fc": 1.0, "note": "Müller"}'.encode("latin-1"))
-    with pytest.raises(ParameterError, match=r"is not UTF-8 text"):
+    with pytest.raises(ParameterError, match=r"is not UTF-8 text") as refused:
         lr.Params.load(path)
-    with pytest.raises(ParameterError, match=r"cannot read parameter file .*missing\.json"):
+    assert refused.value.kind == "not_text"
+    with pytest.raises(ParameterError, match=r"cannot read parameter file .*missing\.json") as refused:
         lr.Params.load(tmp_path / "missing.json")
+    assert refused.value.kind == "unreadable_file"
 
 
 def test_identify_refuses_options_that_are_not_numbers() -> None:
     """identify(cutoff='10') was accepted (read as 10 Hz); an asymmetric flag that is not a bool
     was read as truthy."""
-    with pytest.raises(InputError, match=r"`cutoff` must be a real number, got '10'"):
-        identify_staged(small_log(), cutoff="10")  # type: ignore[arg-type]
-    with pytest.raises(InputError, match=r"`cutoff` must be a real number, got True"):
-        identify_staged(small_log(), cutoff=True)
-    with pytest.raises(InputError, match=r"`asymmetric` must be True or False, got 'no'"):
+    for cutoff in ("10", True):
+        with pytest.raises(InputError, match=rf"`cutoff` must be a real number, got {cutoff!r}") as refused:
+            identify_staged(small_log(), cutoff=cutoff)  # type: ignore[arg-type]
+        assert (refused.value.kind, refused.value.field, refused.value.value) == (
+            "not_real",
+            "cutoff",
+            cutoff,
+        )
+    with pytest.raises(InputError, match=r"`asymmetric` must be True or False, got 'no'") as refused:
         identify_staged(small_log(), asymmetric="no")  # type: ignore[arg-type]
+    assert (refused.value.kind, refused.value.field, refused.value.value) == (
+        "wrong_type",
+        "asymmetric",
+        "no",
+    )
 
 
 @pytest.mark.parametrize("baseline", [None, 3, b"coulomb", {"coulomb": 1}])
 def test_diagnose_refuses_a_baseline_that_is_not_names(baseline: Any) -> None:
     """diagnose(baseline=None) was a TypeError."""
-    with pytest.raises(InputError, match=r"`baseline` must be effect names"):
+    with pytest.raises(InputError, match=r"`baseline` must be effect names") as refused:
         lr.diagnose(small_log(), baseline)
+    assert (refused.value.kind, refused.value.field) == ("wrong_type", "baseline")
 
 
 @pytest.mark.parametrize("column", ["t", "x", "f"])
 def test_columns_that_are_not_numbers_are_data_errors(column: str) -> None:
     """A column of booleans or text is refused, not read as numbers."""
     log = small_log()
-    with pytest.raises(DataError, match=rf"column `{column}` must hold real numbers .*got dtype bool"):
-        lr.identify({**log, column: log[column] > 0})
-    with pytest.raises(DataError, match=rf"column `{column}` must hold real numbers .*got dtype <U"):
-        lr.identify({**log, column: log[column].astype(str)})
+    for spoilt, dtype in ((log[column] > 0, "bool"), (log[column].astype(str), "<U")):
+        with pytest.raises(
+            DataError, match=rf"column `{column}` must hold real numbers .*got dtype {dtype}"
+        ) as refused:
+            lr.identify({**log, column: spoilt})
+        assert (refused.value.kind, refused.value.field) == ("not_real", column)
 
 
 def test_a_signal_written_by_another_thread_does_not_change_the_result() -> None:
@@ -254,13 +286,15 @@ def test_checkpoints_of_text_or_booleans_are_refused(spoil: Callable[[np.ndarray
     model = lr.LeuvenModel(MAXWELL)
     model.run(V, DT)
     state = model.state
-    with pytest.raises(InputError, match=r"`state.z` must hold real numbers"):
+    with pytest.raises(InputError, match=r"`state.z` must hold real numbers") as refused:
         s = state
         model.set_state(lr.ModelState(spoil(s.z), s.zeta, s.last_position, s.has_last_position))
+    assert (refused.value.kind, refused.value.field) == ("not_real", "state.z")
     system = lr.MassSystem(MAXWELL, mass=1.0)
     c = system.state
-    with pytest.raises(InputError, match=r"`state.position` must hold real numbers"):
+    with pytest.raises(InputError, match=r"`state.position` must hold real numbers") as refused:
         system.set_state(lr.MassState(spoil(c.position + 1.0), c.velocity, c.anchor, c.z, c.zeta))
+    assert (refused.value.kind, refused.value.field) == ("not_real", "state.position")
 
 
 @pytest.mark.parametrize(
@@ -281,3 +315,66 @@ def test_csv_line_endings_and_a_byte_order_mark_load_the_same(tmp_path: Path, en
     assert sorted(columns) == ["f", "t", "x"]
     for key in "txf":
         np.testing.assert_array_equal(columns[key], log[key])
+
+
+def _non_increasing_log() -> dict[str, Any]:
+    log = small_log()
+    t = log["t"].copy()
+    t[6] = t[5]
+    return {**log, "t": t}
+
+
+NUMPY_SCALARS = [
+    pytest.param(lambda: lr.identify(_non_increasing_log()), id="t-not-increasing"),
+    pytest.param(lambda: identify_staged(small_log(), held_out=np.float64(0.9)), id="held_out"),
+    pytest.param(lambda: identify_staged(small_log(), elements=np.int64(40)), id="elements"),
+    pytest.param(lambda: identify_staged(small_log(), max_evaluations=np.int64(1)), id="max_evaluations"),
+    pytest.param(lambda: lr.simulate(MAXWELL, V, DT, np.str_("rk4")), id="scheme"),  # type: ignore[arg-type]
+    pytest.param(lambda: lr.LeuvenModel(MAXWELL, channels=np.float64(2.0)), id="channels"),  # type: ignore[arg-type]
+    pytest.param(lambda: lr.discrepancy.Settings(folds=np.int64(1)), id="settings"),
+    pytest.param(lambda: lr.Params(**{**MAXWELL, "W": [np.float64(0.5), [0.5], 0.5, 0.5]}), id="W-nested"),
+    pytest.param(lambda: lr.Params(**{**MAXWELL, "Fc": np.str_("1")}), id="Fc-text"),
+    pytest.param(
+        lambda: lr.ModelFile.from_dict(
+            {"format": "leuven-rt model", "version": np.int64(2), "friction": MAXWELL}
+        ),
+        id="version",
+    ),
+    pytest.param(lambda: lr.Compensator(MAXWELL, DT, np.str_("both")), id="mode"),  # type: ignore[arg-type]
+]
+
+
+@pytest.mark.parametrize("call", NUMPY_SCALARS)
+def test_messages_show_numpy_scalars_as_python_numbers(call: Callable[[], object]) -> None:
+    """A numpy scalar in a message is shown as the Python number or text it holds (shortest
+    round-trip digits): "t[5] = 0.005", never "t[5] = np.float64(0.005)" (numpy 2's repr)."""
+    with pytest.raises(ValueError) as refused:
+        call()
+    message = str(refused.value)
+    assert "np." not in message and "float64(" not in message and "int64(" not in message, message
+
+
+def test_the_command_line_help_is_plain_text(capsys: pytest.CaptureFixture[str]) -> None:
+    """`leuven-rt --help` printed the module docstring's reStructuredText (":mod:`leuven_rt._output`",
+    "``--force``")."""
+    from leuven_rt.cli import main
+
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    assert done.value.code == 0
+    text = capsys.readouterr().out
+    assert "leuven_rt._output" in text and "--force" in text
+    assert ":mod:" not in text and "``" not in text and not re.search(r":[a-z]+:`", text)
+
+
+@pytest.mark.parametrize("command", ["identify", "diagnose"])
+def test_the_baseline_help_lists_the_effect_names(command: str, capsys: pytest.CaptureFixture[str]) -> None:
+    """`--baseline` took effect names without saying which; its help lists the catalogue's."""
+    from leuven_rt.cli import main
+    from leuven_rt.discrepancy import CATALOGUE
+
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for name in CATALOGUE:
+        assert name in text, name

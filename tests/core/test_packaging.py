@@ -12,7 +12,7 @@ import pytest
 
 import leuven_rt
 from leuven_rt import cli
-from leuven_rt._extras import MissingExtraError, progress_wanted, require
+from leuven_rt._extras import MissingExtraError, require
 
 # Hides scipy, matplotlib and tqdm from the import system, as in an install without extras.
 HIDE = """
@@ -103,12 +103,6 @@ def test_require() -> None:
         require("numpy", "no_such_package_here", extra="analysis", needed_by="a test")
     assert isinstance(raised.value, MissingExtraError)
     assert raised.value.extra == "analysis"
-
-
-def test_progress_only_on_a_terminal() -> None:
-    # Under pytest stderr is captured, not a terminal.
-    assert not progress_wanted(True)
-    assert not progress_wanted(False)
 
 
 def test_one_version(capsys: pytest.CaptureFixture[str]) -> None:

@@ -29,10 +29,14 @@ def test_elements_narrower_than_the_rounding_of_z_are_refused(narrow: float) -> 
     """An element window below the rounding unit of z made Rust and the numpy reference disagree
     by up to 25 %; such a bank is refused (for both: the reference validates through the core)."""
     delta = [narrow, 4e-6, 8e-6, 1.6e-5]
-    with pytest.raises(ParameterError, match=r"`Delta\[0\]` must be >= 2\^-26 .* rounding"):
+    with pytest.raises(ParameterError, match=r"`Delta\[0\]` must be >= 2\^-26 .* rounding") as refused:
         Params(**maxwell(Delta=delta))
-    with pytest.raises(ParameterError):
+    error = refused.value
+    assert (error.kind, error.field, error.index, error.value) == ("delta_too_narrow", "Delta[0]", 0, narrow)
+    assert error.bound == 1.6e-5 * 2.0**-26
+    with pytest.raises(ParameterError) as refused:
         leuven_rt.reference.simulate(maxwell(Delta=delta), np.zeros(3), DT)
+    assert refused.value.kind == "delta_too_narrow"
 
 
 def test_the_narrowness_rule_does_not_depend_on_the_order_of_many_elements() -> None:
@@ -40,8 +44,11 @@ def test_the_narrowness_rule_does_not_depend_on_the_order_of_many_elements() -> 
     the whole bank, so a narrow element after 32 wide ones is refused like one beside them."""
     x = np.linspace(0.0, 1e-3, 50)
     for delta in ([1.0, 1e-9], [1.0] * 32 + [1e-9]):
-        with pytest.raises(InputError, match=r"`Delta\[\d+\]` must be >= 2\^-26"):
+        with pytest.raises(InputError) as refused:
             leuven_rt._core.slip_responses(x, np.array(delta))
+        index = len(delta) - 1
+        assert (refused.value.kind, refused.value.field, refused.value.index) == (
+            "delta_too_narrow", f"Delta[{index}]", index)  # fmt: skip
 
 
 def test_wide_spreads_of_delta_are_accepted() -> None:
@@ -54,6 +61,7 @@ def test_overflowing_sum_of_w_is_refused_naming_w(w: float, delta: float) -> Non
     with pytest.raises(ParameterError, match=r"^`sum\(W\)` must be finite.*`W\[0\]`") as refused:
         Params(**maxwell(W=[w] * 4, Delta=[delta] * 4))
     assert "Delta" not in str(refused.value)
+    assert (refused.value.kind, refused.value.field, refused.value.value) == ("force_sum_overflow", "W[0]", w)
 
 
 def test_set_state_outside_a_window_is_refused() -> None:
@@ -65,8 +73,13 @@ def test_set_state_outside_a_window_is_refused() -> None:
     zeta = good.zeta.copy()
     zeta[0, 1] = good.z[0] - 5e-6  # Delta[1] = 4e-6
     bad = ModelState(good.z, zeta, good.last_position, good.has_last_position)
-    with pytest.raises(InputError, match=r"channel 0: `zeta\[1\]` must be within `Delta\[1\]` = 4e-6"):
+    with pytest.raises(
+        InputError, match=r"channel 0: `zeta\[1\]` must be within `Delta\[1\]` = 4e-6"
+    ) as refused:
         model.set_state(bad)
+    error = refused.value
+    assert (error.kind, error.field, error.index, error.channel, error.bound) == (
+        "state_outside_window", "zeta[1]", 1, 0, 4e-6)  # fmt: skip
     np.testing.assert_array_equal(model.state.zeta, good.zeta)
 
 

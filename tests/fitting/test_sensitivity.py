@@ -249,49 +249,86 @@ def test_many_sets_are_each_sets_run() -> None:
     assert simulate_sets([], v, 1e-3).shape == (0, 400)
 
 
-def test_refusals_name_the_argument() -> None:
+def refused(error_class: type[Exception], call: Any) -> Any:
+    """The error ``call()`` raises, which must be of ``error_class``."""
+    with pytest.raises(error_class) as caught:
+        call()
+    return caught.value
+
+
+def test_refusals_name_the_argument_and_carry_their_data() -> None:
     v = 0.01 * np.sin(np.arange(50) * 0.1)
-    with pytest.raises(
-        InputError, match=r"`rows` must be strictly increasing, got rows\[2\] = 3 after rows\[1\] = 3"
-    ):
-        sensitivities(MAXWELL, v, 1e-3, rows=[1, 3, 3])
-    with pytest.raises(InputError, match=r"below its length 50, got rows\[1\] = 50"):
-        sensitivities(MAXWELL, v, 1e-3, rows=[0, 50])
-    with pytest.raises(InputError, match=r"`rows` must be sample indices >= 0, got rows\[0\] = -1"):
-        sensitivities(MAXWELL, v, 1e-3, rows=[-1, 2])
-    with pytest.raises(InputError, match=r"`rows` must be integer sample indices, got dtype float64"):
-        sensitivities(MAXWELL, v, 1e-3, rows=[1.0, 2.0])
-    with pytest.raises(InputError, match=r"`rows` must be integer sample indices, got dtype bool"):
-        sensitivities(MAXWELL, v, 1e-3, rows=[True])
-    with pytest.raises(InputError, match=r"`rows` must have shape \(R,\), got shape \(1, 2\)"):
-        sensitivities(MAXWELL, v, 1e-3, rows=[[1, 2]])
-    with pytest.raises(InputError, match=r"`input` must be 'velocity' or 'position', got 'force'"):
-        sensitivities(MAXWELL, v, 1e-3, input="force")  # type: ignore[arg-type]
-    with pytest.raises(InputError, match=r"`scheme` must be 'implicit' or 'explicit'"):
-        sensitivities(MAXWELL, v, 1e-3, scheme="rk4")  # type: ignore[arg-type]
-    with pytest.raises(InputError, match=r"`signal` must have shape \(T,\), got shape \(2, 50\)"):
-        sensitivities(MAXWELL, np.stack([v, v]), 1e-3)
-    bad = v.copy()
-    bad[7] = np.nan
-    with pytest.raises(InputError, match=r"`v` must be finite, got nan at sample 7"):
-        sensitivities(MAXWELL, bad, 1e-3)
-    with pytest.raises(InputError, match=r"`dt` must be finite and > 0, got 0"):
-        sensitivities(MAXWELL, v, 0.0)
-    with pytest.raises(ParameterError, match=r"`Fc` must be finite and > 0"):
-        sensitivities({**MAXWELL, "Fc": -1.0}, v, 1e-3)
+    cases: list[tuple[type[Exception], Any, str, dict[str, Any]]] = [
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[1, 3, 3]),
+         "`rows` must be strictly increasing, got rows[2] = 3 after rows[1] = 3",
+         dict(kind="not_increasing", field="rows[2]", index=2, value=3, bound=3)),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[0, 50]),
+         "`rows` must be samples of the signal, below its length 50, got rows[1] = 50",
+         dict(kind="out_of_range", field="rows[1]", index=1, value=50, bound=50)),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=np.array([4, 2**63], dtype=np.uint64)),
+         "`rows` must be samples of the signal, below its length 50, got rows[1] = 9223372036854775808",
+         dict(kind="out_of_range", field="rows[1]", index=1, value=2**63, bound=50)),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[-1, 2]),
+         "`rows` must be sample indices >= 0, got rows[0] = -1",
+         dict(kind="out_of_range", field="rows[0]", index=0, value=-1, bound=0)),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[1.0, 2.0]),
+         "`rows` must be integer sample indices, got dtype float64",
+         dict(kind="not_integer", field="rows", value="float64")),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[True]),
+         "`rows` must be integer sample indices, got dtype bool",
+         dict(kind="not_integer", field="rows", value="bool")),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows="1"),
+         "`rows` must be integer sample indices, got str",
+         dict(kind="not_integer", field="rows", value="1")),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, rows=[[1, 2]]),
+         "`rows` must have shape (R,), got shape (1, 2)",
+         dict(kind="shape", field="rows", expected="(R,)", got=(1, 2))),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, input="force"),
+         "`input` must be 'velocity' or 'position', got 'force'",
+         dict(kind="invalid_choice", field="input", value="force", expected=("velocity", "position"))),
+        (InputError, lambda: sensitivities(MAXWELL, v, 1e-3, scheme="rk4"),
+         "`scheme` must be 'implicit' or 'explicit', got 'rk4'",
+         dict(kind="invalid_choice", field="scheme", value="rk4")),
+        (InputError, lambda: sensitivities(MAXWELL, np.stack([v, v]), 1e-3),
+         "`signal` must have shape (T,), got shape (2, 50)",
+         dict(kind="shape", field="signal", expected="(T,)", got=(2, 50))),
+        (InputError, lambda: sensitivities(MAXWELL, np.where(np.arange(50) == 7, np.nan, v), 1e-3),
+         "`v` must be finite, got nan at sample 7",
+         dict(kind="not_finite", field="v", sample=7)),
+        (InputError, lambda: sensitivities(MAXWELL, v, 0.0),
+         "`dt` must be finite and > 0, got 0.0",
+         dict(kind="not_positive", field="dt", value=0.0)),
+        (ParameterError, lambda: sensitivities({**MAXWELL, "Fc": -1.0}, v, 1e-3),
+         "`Fc` must be finite and > 0",
+         dict(kind="not_positive", field="Fc", value=-1.0)),
+    ]  # fmt: skip
+    for error_class, call, message, data in cases:
+        error = refused(error_class, call)
+        assert str(error).startswith(message), str(error)
+        for name, value in data.items():
+            assert getattr(error, name) == value, (message, name, getattr(error, name))
     # LuGre by forward Euler at 100 Hz: ten times past its stability limit.
     sine = 0.01 * np.sin(2 * np.pi * 5 * np.arange(1000) * 1e-2)
-    with pytest.raises(DivergenceError, match=r"diverged at sample \d+"):
-        sensitivities(LUGRE, sine, 1e-2, scheme="explicit")
+    diverged = refused(DivergenceError, lambda: sensitivities(LUGRE, sine, 1e-2, scheme="explicit"))
+    assert diverged.kind == "diverged" and isinstance(diverged.sample, int)
+    assert f"diverged at sample {diverged.sample}" in str(diverged)
 
 
 def test_refusals_of_many_sets_name_the_set() -> None:
     v = 0.01 * np.sin(np.arange(50) * 0.1)
-    with pytest.raises(ParameterError, match=r"params\[1\]: `Fs` must be >= `Fc`"):
-        simulate_sets([MAXWELL, {**MAXWELL, "Fs": 0.5}], v, 1e-3)
-    with pytest.raises(ParameterError, match=r"`params` must be a sequence of parameter sets, got Params"):
-        simulate_sets(Params(**MAXWELL), v, 1e-3)  # type: ignore[arg-type]
+    bad_set = refused(ParameterError, lambda: simulate_sets([MAXWELL, {**MAXWELL, "Fs": 0.5}], v, 1e-3))
+    assert str(bad_set).startswith("params[1]: `Fs` must be >= `Fc`")
+    assert (bad_set.kind, bad_set.field, bad_set.value, bad_set.channel) == (
+        "static_below_coulomb",
+        "Fs",
+        0.5,
+        1,
+    )
+    not_sets = refused(ParameterError, lambda: simulate_sets(Params(**MAXWELL), v, 1e-3))  # type: ignore[arg-type]
+    assert str(not_sets) == "`params` must be a sequence of parameter sets, got Params"
+    assert (not_sets.kind, not_sets.field) == ("wrong_type", "params")
     bad = v.copy()
     bad[4] = np.inf
-    with pytest.raises(InputError, match=r"parameter set 0: `v` must be finite, got inf at sample 4"):
-        simulate_sets([MAXWELL, LUGRE], bad, 1e-3)
+    run = refused(InputError, lambda: simulate_sets([MAXWELL, LUGRE], bad, 1e-3))
+    assert str(run) == "parameter set 0: `v` must be finite, got inf at sample 4"
+    assert (run.kind, run.field, run.sample, run.channel) == ("not_finite", "v", 4, 0)

@@ -22,7 +22,10 @@ from leuven_rt.identification import identify_staged as identify
         ({"elements": 2.5}, r"`elements` must be None or an integer"),
         ({"held_out": 0.9}, r"`held_out` must be a fraction in \[0, 0\.5\], got 0\.9"),
         ({"max_evaluations": 1}, r"`max_evaluations` must be an integer >= 3, got 1"),
-        ({"cutoff": 600.0}, r"`cutoff` must be in \(0, 500\) Hz"),
+        (
+            {"cutoff": 600.0},
+            r"`cutoff` must be below 500 Hz \(the Nyquist frequency of a 0\.001 s step\), got 600\.0 Hz",
+        ),
     ],
 )
 def test_bad_options_are_refused(options: dict[str, Any], match: str) -> None:

@@ -129,7 +129,11 @@ impl fmt::Display for Field {
 ///
 /// Two errors are equal when they are the same variant with bit-identical values, so that an
 /// error carrying NaN equals itself (and `Eq` holds).
-#[derive(Clone, Copy, Debug)]
+///
+/// [`Error::kind`] names the variant in snake case (`"not_finite"`, `"elements_too_weak"`): the
+/// bindings hand it on as the error's `kind` (docs/errors.md#error-data).
+#[derive(Clone, Copy, Debug, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "snake_case")]
 pub enum Error {
     /// The field must be finite and strictly positive (and not subnormal).
     NotPositive {
@@ -374,6 +378,14 @@ pub struct InChannel {
 }
 
 impl Error {
+    /// The [`kind`](Error::kind) of every variant, in their order.
+    pub const KINDS: &'static [&'static str] = <Self as strum::VariantNames>::VARIANTS;
+
+    /// The variant's name in snake case, e.g. `"not_finite"` for [`Error::NotFinite`].
+    pub fn kind(self) -> &'static str {
+        self.into()
+    }
+
     /// This error, located in `channel` of several.
     pub const fn in_channel(self, channel: usize) -> InChannel {
         InChannel {

@@ -3,13 +3,15 @@
 use core::fmt;
 
 use gms_core::{Field, InChannel};
+use strum::VariantNames;
 
 use crate::kind::HysteresisKind;
 use crate::MAX_ELEMENTS;
 
 /// Why a parameter set, an input or a call was refused; [`Display`](fmt::Display) writes the
-/// whole message.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// whole message, [`Error::details`] gives its data (kind, field, value) without parsing it.
+#[derive(Clone, Copy, Debug, PartialEq, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "snake_case")]
 pub enum Error {
     /// A rule of gms-core.
     Core(gms_core::Error),
@@ -94,7 +96,7 @@ pub enum Error {
 
 /// What an [`Error`] is about, for the bindings that sort errors into classes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ErrorKind {
+pub enum ErrorClass {
     /// A parameter breaks its rule.
     Parameter,
     /// An input signal, step size, option or index is not what the call expects.
@@ -104,10 +106,10 @@ pub enum ErrorKind {
 }
 
 impl Error {
-    /// What the error is about.
-    pub fn kind(&self) -> ErrorKind {
+    /// The exception class the error belongs to.
+    pub fn class(&self) -> ErrorClass {
         match self {
-            Error::Core(error) | Error::Channel(InChannel { error, .. }) => core_kind(error),
+            Error::Core(error) | Error::Channel(InChannel { error, .. }) => core_class(error),
             Error::BothHysteresis
             | Error::NeitherHysteresis
             | Error::EmptyElements
@@ -115,12 +117,12 @@ impl Error {
             | Error::ElementLengths { .. }
             | Error::Incompatible { .. }
             | Error::DeflectionCount { .. }
-            | Error::InitialLength { .. } => ErrorKind::Parameter,
+            | Error::InitialLength { .. } => ErrorClass::Parameter,
             Error::OutOfMemory { .. }
             | Error::ChannelIndex { .. }
             | Error::SignalShape { .. }
             | Error::BreakDeflection { .. }
-            | Error::State { .. } => ErrorKind::Input,
+            | Error::State { .. } => ErrorClass::Input,
         }
     }
 
@@ -132,6 +134,332 @@ impl Error {
             | Error::State { error, .. } => Some(*error),
             _ => None,
         }
+    }
+
+    /// The error's kind: gms-core's variant name for the rules of gms-core (`"not_finite"`,
+    /// `"elements_too_weak"`), this layer's variant name otherwise (`"too_many_elements"`), both
+    /// in snake case.
+    pub fn kind(&self) -> &'static str {
+        match self.core() {
+            Some(error) => error.kind(),
+            None => self.into(),
+        }
+    }
+
+    /// Every kind an [`Error`] can have: gms-core's, then this layer's own.
+    pub fn kinds() -> impl Iterator<Item = &'static str> {
+        gms_core::Error::KINDS.iter().copied().chain(
+            Self::VARIANTS
+                .iter()
+                .copied()
+                .filter(|kind| !WRAPPERS.contains(kind)),
+        )
+    }
+
+    /// The data of the error, as the bindings attach it to an exception (docs/errors.md#error-data).
+    pub fn details(&self) -> Details {
+        let own = Details::new(self.kind());
+        match *self {
+            Error::Core(error) => core_details(error),
+            Error::Channel(InChannel { channel, error }) | Error::State { channel, error } => {
+                Details {
+                    channel: Some(channel),
+                    ..core_details(error)
+                }
+            }
+            Error::BothHysteresis | Error::NeitherHysteresis => own.key("sigma0"),
+            Error::EmptyElements => own.key("W"),
+            Error::TooManyElements { count } => own
+                .key("W")
+                .value(Number::Count(count))
+                .bound(Number::Count(MAX_ELEMENTS)),
+            Error::DeflectionCount { count } => own
+                .key("Delta")
+                .value(Number::Count(count))
+                .bound(Number::Count(MAX_ELEMENTS)),
+            Error::ElementLengths { w, delta } => own.key("Delta").lengths(w, delta),
+            Error::Incompatible { expected, got } => own
+                .key("params")
+                .lengths(expected.elements(), got.elements()),
+            Error::OutOfMemory { channels, .. } => {
+                own.key("channels").value(Number::Count(channels))
+            }
+            Error::ChannelIndex { channel, channels } => own
+                .key("channel")
+                .value(Number::Count(channel))
+                .bound(Number::Count(channels)),
+            Error::SignalShape { len, channels } => {
+                own.value(Number::Count(len)).bound(Number::Count(channels))
+            }
+            Error::InitialLength { elements, got } => own
+                .key("initial")
+                .lengths(elements + gms_core::identification::EXTRA_TERMS, got),
+            Error::BreakDeflection { index, value } => {
+                own.element("Delta", index).value(Number::Real(value))
+            }
+        }
+    }
+}
+
+/// The variants of [`Error`] that wrap a gms-core error, whose kind is the wrapped one's.
+const WRAPPERS: [&str; 3] = ["core", "channel", "state"];
+
+/// A value an error carries: a real number, or a count (of elements, samples, channels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Number {
+    /// A real number.
+    Real(f64),
+    /// A count or an index.
+    Count(usize),
+}
+
+/// Where an error points, spelled as the user wrote it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Location {
+    /// A parameter, an argument or a state member: `"Fs"`, `"dt"`, `"channels"`.
+    Key(&'static str),
+    /// Element `index` of a sequence: `"W[2]"`.
+    Element(&'static str, usize),
+    /// Ripple `ripple` of a level, one of its members, and an entry of that member:
+    /// `"ripples[0]"`, `"ripples[0].period"`, `"ripples[1].cos[3]"`.
+    Ripple {
+        /// Index of the ripple.
+        ripple: usize,
+        /// `period`, `cos` or `sin`, if the error is about one of them.
+        member: Option<&'static str>,
+        /// Index of the amplitude, if the error is about one.
+        index: Option<usize>,
+    },
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Location::Key(key) => f.write_str(key),
+            Location::Element(key, index) => write!(f, "{key}[{index}]"),
+            Location::Ripple {
+                ripple,
+                member,
+                index,
+            } => {
+                write!(f, "ripples[{ripple}]")?;
+                if let Some(member) = member {
+                    write!(f, ".{member}")?;
+                }
+                if let Some(index) = index {
+                    write!(f, "[{index}]")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// The data of an [`Error`] (docs/errors.md#error-data): what the Python exception carries as
+/// attributes, so that a caller reads them instead of parsing the message. Each is `None`
+/// where the error has no such datum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Details {
+    /// The error's kind, [`Error::kind`].
+    pub kind: &'static str,
+    /// The parameter, argument or state member at fault.
+    pub field: Option<Location>,
+    /// The offending value.
+    pub value: Option<Number>,
+    /// The limit the value had to reach or stay within (`Fc` for `Fs`, the largest count).
+    pub bound: Option<Number>,
+    /// The index of the element or entry at fault: the last index that `field` spells.
+    pub index: Option<usize>,
+    /// The sample of a signal.
+    pub sample: Option<usize>,
+    /// The channel of a bank.
+    pub channel: Option<usize>,
+    /// The length or count expected (for a swap of parameters: the compensator's number of
+    /// elements, 0 for linear hysteresis).
+    pub expected: Option<usize>,
+    /// The length or count that came.
+    pub got: Option<usize>,
+}
+
+impl Details {
+    const fn new(kind: &'static str) -> Self {
+        Details {
+            kind,
+            field: None,
+            value: None,
+            bound: None,
+            index: None,
+            sample: None,
+            channel: None,
+            expected: None,
+            got: None,
+        }
+    }
+
+    const fn key(self, key: &'static str) -> Self {
+        Details {
+            field: Some(Location::Key(key)),
+            ..self
+        }
+    }
+
+    const fn element(self, key: &'static str, index: usize) -> Self {
+        Details {
+            field: Some(Location::Element(key, index)),
+            index: Some(index),
+            ..self
+        }
+    }
+
+    const fn ripple(
+        self,
+        ripple: usize,
+        member: Option<&'static str>,
+        index: Option<usize>,
+    ) -> Self {
+        Details {
+            field: Some(Location::Ripple {
+                ripple,
+                member,
+                index,
+            }),
+            index: match index {
+                Some(index) => Some(index),
+                None => Some(ripple),
+            },
+            ..self
+        }
+    }
+
+    const fn value(self, value: Number) -> Self {
+        Details {
+            value: Some(value),
+            ..self
+        }
+    }
+
+    const fn real(self, value: f64) -> Self {
+        self.value(Number::Real(value))
+    }
+
+    const fn bound(self, bound: Number) -> Self {
+        Details {
+            bound: Some(bound),
+            ..self
+        }
+    }
+
+    const fn sample(self, sample: usize) -> Self {
+        Details {
+            sample: Some(sample),
+            ..self
+        }
+    }
+
+    const fn lengths(self, expected: usize, got: usize) -> Self {
+        Details {
+            expected: Some(expected),
+            got: Some(got),
+            ..self
+        }
+    }
+}
+
+/// The data of a gms-core error (one channel's, or of a single step).
+fn core_details(error: gms_core::Error) -> Details {
+    use gms_core::Error as Core;
+    let details = Details::new(error.kind());
+    match error {
+        Core::NotPositive { field, value }
+        | Core::Negative { field, value }
+        | Core::NotFiniteValue { field, value }
+        | Core::NotInUnitInterval { field, value } => details.key(field.key()).real(value),
+        Core::StaticBelowCoulomb {
+            field,
+            coulomb,
+            value,
+        } => details
+            .key(field.key())
+            .real(value)
+            .bound(Number::Real(coulomb)),
+        Core::Element {
+            field,
+            index,
+            value,
+        } => details.element(field.key(), index).real(value),
+        Core::NoElements => details.key("W"),
+        Core::ForceSumOverflow { index, largest } => details.element("W", index).real(largest),
+        Core::StiffnessOverflow { index, delta, .. } => details.element("Delta", index).real(delta),
+        Core::StiffnessSumOverflow => details.key("Delta"),
+        Core::DeltaTooNarrow {
+            index,
+            value,
+            widest,
+        } => details
+            .element("Delta", index)
+            .real(value)
+            .bound(Number::Real(widest * gms_core::MIN_DELTA_RATIO)),
+        Core::StateOutsideWindow {
+            index,
+            deflection,
+            limit,
+        } => details
+            .element("zeta", index)
+            .real(deflection)
+            .bound(Number::Real(limit)),
+        Core::ElementsTooWeak { sum, peak } => details.key("W").real(sum).bound(Number::Real(peak)),
+        Core::NotFinite {
+            field,
+            index,
+            value,
+        } => match field {
+            // A parameter vector, not a signal: its entries are not samples.
+            Field::initial | Field::regressor | Field::trend => {
+                details.element(field.key(), index).real(value)
+            }
+            _ => details.key(field.key()).real(value).sample(index),
+        },
+        Core::VelocityNotFinite { x, .. } => details.key("x").real(x),
+        Core::Diverged { index }
+        | Core::Overflow { index }
+        | Core::InputsOverflow { index, .. } => details.sample(index),
+        Core::TraceBelowInitial {
+            parameters,
+            initial_covariance,
+            max_trace,
+        } => details
+            .key("max_trace")
+            .real(max_trace)
+            .bound(Number::Real(parameters as f64 * initial_covariance)),
+        Core::InputLengthMismatch {
+            field,
+            expected,
+            got,
+        } => details.key(field.key()).lengths(expected, got),
+        Core::LengthMismatch { expected, got } => details.lengths(expected, got),
+        Core::TooManyRipples { count } => details
+            .key("ripples")
+            .value(Number::Count(count))
+            .bound(Number::Count(gms_core::MAX_RIPPLES)),
+        Core::RipplePeriod { ripple, value } => {
+            details.ripple(ripple, Some("period"), None).real(value)
+        }
+        Core::HarmonicLengths { ripple, cos, sin } => {
+            details.ripple(ripple, Some("sin"), None).lengths(cos, sin)
+        }
+        Core::TooManyHarmonics { ripple, count } => details
+            .ripple(ripple, None, None)
+            .value(Number::Count(count))
+            .bound(Number::Count(gms_core::MAX_HARMONICS)),
+        Core::RippleCoefficient {
+            field,
+            ripple,
+            index,
+            value,
+        } => details
+            .ripple(ripple, Some(field.key()), Some(index))
+            .real(value),
+        Core::LevelTooDeep { sum } => details.real(sum).bound(Number::Real(1.0)),
     }
 }
 
@@ -150,19 +478,19 @@ fn is_input(field: Field) -> bool {
     )
 }
 
-fn core_kind(error: &gms_core::Error) -> ErrorKind {
+fn core_class(error: &gms_core::Error) -> ErrorClass {
     use gms_core::Error as Core;
     match *error {
-        Core::Diverged { .. } => ErrorKind::Divergence,
+        Core::Diverged { .. } => ErrorClass::Divergence,
         Core::NotPositive { field, .. }
         | Core::Negative { field, .. }
         | Core::NotFiniteValue { field, .. }
         | Core::NotInUnitInterval { field, .. }
         | Core::NotFinite { field, .. } => {
             if is_input(field) {
-                ErrorKind::Input
+                ErrorClass::Input
             } else {
-                ErrorKind::Parameter
+                ErrorClass::Parameter
             }
         }
         Core::StaticBelowCoulomb { .. }
@@ -179,13 +507,13 @@ fn core_kind(error: &gms_core::Error) -> ErrorKind {
         | Core::HarmonicLengths { .. }
         | Core::TooManyHarmonics { .. }
         | Core::RippleCoefficient { .. }
-        | Core::LevelTooDeep { .. } => ErrorKind::Parameter,
+        | Core::LevelTooDeep { .. } => ErrorClass::Parameter,
         Core::VelocityNotFinite { .. }
         | Core::Overflow { .. }
         | Core::InputsOverflow { .. }
         | Core::InputLengthMismatch { .. }
         | Core::StateOutsideWindow { .. }
-        | Core::LengthMismatch { .. } => ErrorKind::Input,
+        | Core::LengthMismatch { .. } => ErrorClass::Input,
     }
 }
 

@@ -1,9 +1,12 @@
 //! Channels of the friction model that share one validated parameter set, whatever its number
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
-#[cfg(feature = "parallel")]
-use gms_batch::LANES;
-use gms_batch::{BatchHysteresis, Signal};
+// The hysteresis types a bank holds: with the `batch` feature those that gms-batch steps in
+// lanes (every one gms-core has), without it any of gms-core's.
+#[cfg(feature = "batch")]
+use gms_batch::BatchHysteresis as BankHysteresis;
+#[cfg(not(feature = "batch"))]
+use gms_core::Hysteresis as BankHysteresis;
 use gms_core::{Hysteresis, Level, Params, Scheme, State};
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
@@ -75,7 +78,7 @@ struct Channels<H: Hysteresis> {
 
 impl<H> FrictionChannels for Channels<H>
 where
-    H: BatchHysteresis<Memory: Memory> + Send + Sync,
+    H: BankHysteresis<Memory: Memory> + Send + Sync,
 {
     fn channels(&self) -> usize {
         self.states.len()
@@ -114,30 +117,23 @@ where
             // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
             return Ok(params.simulate(&mut params.relaxed_state(), &[], dt, scheme, &mut [])?);
         }
-        // gms-batch steps the channels several at a time (LANES of them in SIMD lanes), and hands
-        // any group with a rejected sample to gms-core's block calls, which check dt and scan
-        // each row for finiteness before they step: the one check, and the same errors.
-        let signal = match kind {
-            Input::Velocity => Signal::Velocity,
-            Input::Position => Signal::Position(level),
-        };
         let run = |states: &mut [State<H::Memory>], input: &[f64], out: &mut [f64]| {
-            gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
+            run_rows(params, states, input, samples, dt, scheme, kind, level, out)
         };
         // Only the first failing channel is kept: a result per channel would be one more
         // allocation the size of the bank, and an infallible one.
         all_or_nothing(&mut self.states, |states| {
             #[cfg(feature = "parallel")]
             if states.len() > 1 {
-                // Whole groups of lanes go to the threads.
-                let block = LANES * samples;
+                // Whole groups (of lanes, with `batch`) go to the threads.
+                let block = GROUP * samples;
                 return states
-                    .par_chunks_mut(LANES)
+                    .par_chunks_mut(GROUP)
                     .zip(input.par_chunks(block).zip(out.par_chunks_mut(block)))
                     .enumerate()
                     .filter_map(|(group, (states, (input, out)))| {
                         run(states, input, out)
-                            .map(|(channel, error)| (group * LANES + channel, error))
+                            .map(|(channel, error)| (group * GROUP + channel, error))
                     })
                     .min_by_key(|(channel, _)| *channel);
             }
@@ -214,13 +210,81 @@ where
     }
 }
 
+/// The channels the threads take at a time: a group of gms-batch's lanes, or one channel.
+#[cfg(all(feature = "parallel", feature = "batch"))]
+const GROUP: usize = gms_batch::LANES;
+#[cfg(all(feature = "parallel", not(feature = "batch")))]
+const GROUP: usize = 1;
+
+/// Runs each of `states` over its row of `samples` (> 0) in `input`, writing the forces into
+/// `out`; the first failing channel (lowest index) and gms-core's error for it, whose state is
+/// as before (the others may have advanced: the caller restores them).
+///
+/// gms-batch steps the channels several at a time (LANES of them in SIMD lanes), and hands any
+/// group with a rejected sample to gms-core's block calls, which check dt and scan each row for
+/// finiteness before they step: the one check, and the same errors.
+#[cfg(feature = "batch")]
+#[allow(clippy::too_many_arguments)] // gms-core's block call, plus the shape
+fn run_rows<H: BankHysteresis>(
+    params: &Params<H>,
+    states: &mut [State<H::Memory>],
+    input: &[f64],
+    samples: usize,
+    dt: f64,
+    scheme: Scheme,
+    kind: Input,
+    level: &Level,
+    out: &mut [f64],
+) -> Option<(usize, gms_core::Error)> {
+    let signal = match kind {
+        Input::Velocity => gms_batch::Signal::Velocity,
+        Input::Position => gms_batch::Signal::Position(level),
+    };
+    gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
+}
+
+/// [`run_rows`] without gms-batch (the C library, which steps one compensator per call and
+/// leaves the batch kernels out): the channels one after the other through gms-core's block
+/// calls, which check dt and scan each row for finiteness before they step. The forces, states
+/// and errors are those of the batch build, which hands its rejected groups to the same calls.
+#[cfg(not(feature = "batch"))]
+#[allow(clippy::too_many_arguments)] // gms-core's block call, plus the shape
+fn run_rows<H: BankHysteresis>(
+    params: &Params<H>,
+    states: &mut [State<H::Memory>],
+    input: &[f64],
+    samples: usize,
+    dt: f64,
+    scheme: Scheme,
+    kind: Input,
+    level: &Level,
+    out: &mut [f64],
+) -> Option<(usize, gms_core::Error)> {
+    states
+        .iter_mut()
+        .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
+        .enumerate()
+        .find_map(|(channel, (state, (input, out)))| {
+            let result = match kind {
+                Input::Velocity => params.simulate(state, input, dt, scheme, out),
+                Input::Position if level.is_flat() => {
+                    params.simulate_position(state, input, dt, scheme, out)
+                }
+                Input::Position => {
+                    params.simulate_position_level(state, input, dt, scheme, level, out)
+                }
+            };
+            result.err().map(|error| (channel, error))
+        })
+}
+
 fn boxed<H>(
     params: Params<H>,
     channels: usize,
     scheme: Scheme,
 ) -> Result<Box<dyn FrictionChannels>, Error>
 where
-    H: BatchHysteresis<Memory: Memory> + Send + Sync + 'static,
+    H: BankHysteresis<Memory: Memory> + Send + Sync + 'static,
 {
     Ok(Box::new(Channels {
         states: states(params.relaxed_state(), channels)?,

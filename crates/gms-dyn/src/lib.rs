@@ -12,7 +12,7 @@
 //!   [`Level`] (re-exported from gms-core, which validates it).
 //! - [`OnlineIdentifier`] and [`slip_responses`]: identification with N chosen at run time.
 //! - [`Error`]: gms-core's rules plus the refusals of this layer, each displayed as the whole
-//!   message the user reads.
+//!   message the user reads, with its data ([`Error::details`]: kind, field, value) beside it.
 //! - [`with_params!`]: code generic over the hysteresis, run on whichever gms-core parameters a
 //!   [`ParameterSet`] holds (the crates built on this one, gms-fit, dispatch through it).
 //!
@@ -32,7 +32,7 @@ mod params;
 mod slip;
 
 pub use compensator::{Compensator, CompensatorState};
-pub use error::{Error, ErrorKind};
+pub use error::{Details, Error, ErrorClass, Location, Number};
 pub use friction::{FrictionBank, Input};
 pub use gms_core::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use kind::HysteresisKind;

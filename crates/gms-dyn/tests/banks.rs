@@ -3,7 +3,9 @@
 //! touches and copies nothing but still checks dt.
 
 use gms_core::{Field, Scheme};
-use gms_dyn::{Error, ErrorKind, FrictionBank, Input, MassBank, Mechanics, RawElements, RawParams};
+use gms_dyn::{
+    Error, ErrorClass, FrictionBank, Input, MassBank, Mechanics, RawElements, RawParams,
+};
 
 fn set() -> gms_dyn::ParameterSet {
     let (w, delta) = ([1.0; 3], [1e-6, 2e-6, 4e-6]);
@@ -54,7 +56,7 @@ fn written_friction_states_are_checked_all_or_nothing() {
         ),
         "{refused:?}"
     );
-    assert_eq!(refused.kind(), ErrorKind::Input);
+    assert_eq!(refused.class(), ErrorClass::Input);
     let message = refused.to_string();
     assert!(
         message.starts_with("state of channel 1: `zeta[2]` must be within `Delta[2]` = 4e-6"),
@@ -77,7 +79,7 @@ fn written_friction_states_are_checked_all_or_nothing() {
             }
         }
     );
-    assert_eq!(refused.kind(), ErrorKind::Input);
+    assert_eq!(refused.class(), ErrorClass::Input);
 }
 
 #[test]
@@ -129,7 +131,8 @@ fn friction_state(bank: &FrictionBank) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<boo
     (z, memory, last, has_last)
 }
 
-/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core): the
+/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core), or, without
+/// the `batch` feature (as the C library builds gms-dyn), all through gms-core's block calls: the
 /// forces are those of stepping each channel alone, and a rejected sample anywhere names its
 /// channel and sample and leaves every channel as it was.
 #[test]

@@ -3,7 +3,7 @@
 
 use gms_core::{Field, Mode, Scheme};
 use gms_dyn::{
-    Compensator, Error, ErrorKind, FrictionBank, Input, Level, RawElements, RawParams, RippleTerms,
+    Compensator, Error, ErrorClass, FrictionBank, Input, Level, RawElements, RawParams, RippleTerms,
 };
 
 const DT: f64 = 1e-3;
@@ -105,7 +105,7 @@ fn compensator_keeps_its_level_and_position() {
 #[test]
 fn level_refusals_are_parameter_errors() {
     let refused = Level::new(0.0, 1.0, [0.6, 0.5], &[]).expect_err("too deep");
-    assert_eq!(Error::from(refused).kind(), ErrorKind::Parameter);
+    assert_eq!(Error::from(refused).class(), ErrorClass::Parameter);
     let refused = Level::new(0.0, -1.0, [0.0; 2], &[]).expect_err("negative half stroke");
-    assert_eq!(Error::from(refused).kind(), ErrorKind::Parameter);
+    assert_eq!(Error::from(refused).class(), ErrorClass::Parameter);
 }

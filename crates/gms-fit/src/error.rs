@@ -3,7 +3,7 @@
 
 use core::fmt;
 
-use gms_dyn::ErrorKind;
+use gms_dyn::{Details, ErrorClass, Location, Number};
 
 /// The output slices a call writes, as its errors name them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -16,13 +16,20 @@ pub enum Output {
     Forces,
 }
 
-impl fmt::Display for Output {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
+impl Output {
+    /// The name of the output, as the errors name it.
+    pub const fn name(self) -> &'static str {
+        match self {
             Output::Force => "force",
             Output::Jacobian => "jacobian",
             Output::Forces => "forces",
-        })
+        }
+    }
+}
+
+impl fmt::Display for Output {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -69,13 +76,77 @@ pub enum Error {
 }
 
 impl Error {
-    /// What the error is about, in gms-dyn's classes (the bindings sort errors by it).
-    pub fn kind(&self) -> ErrorKind {
+    /// The kinds of this crate's own refusals (docs/errors.md#kinds); the others are gms-core's.
+    pub const KINDS: [&'static str; 3] = ["not_increasing", "out_of_range", "length_mismatch"];
+
+    /// The exception class the error belongs to, in gms-dyn's classes.
+    pub fn class(&self) -> ErrorClass {
         match *self {
-            Error::Core(error) | Error::Set { error, .. } => gms_dyn::Error::Core(error).kind(),
+            Error::Core(error) | Error::Set { error, .. } => gms_dyn::Error::Core(error).class(),
             Error::RowOrder { .. } | Error::RowBeyond { .. } | Error::OutputLength { .. } => {
-                ErrorKind::Input
+                ErrorClass::Input
             }
+        }
+    }
+
+    /// The rule broken, in snake case: gms-core's for a refused step, else one of
+    /// [`Error::KINDS`].
+    pub fn kind(&self) -> &'static str {
+        self.details().kind
+    }
+
+    /// The data of the error, as the bindings attach it to an exception
+    /// (docs/errors.md#error-data); for [`Error::Set`], `channel` is the parameter set.
+    pub fn details(&self) -> Details {
+        let own = |kind: &'static str| Details {
+            kind,
+            field: None,
+            value: None,
+            bound: None,
+            index: None,
+            sample: None,
+            channel: None,
+            expected: None,
+            got: None,
+        };
+        match *self {
+            Error::Core(error) => gms_dyn::Error::Core(error).details(),
+            Error::Set { set, error } => Details {
+                channel: Some(set),
+                ..gms_dyn::Error::Core(error).details()
+            },
+            Error::RowOrder {
+                index,
+                row,
+                previous,
+            } => Details {
+                field: Some(Location::Element("rows", index)),
+                index: Some(index),
+                value: Some(Number::Count(row)),
+                bound: Some(Number::Count(previous)),
+                ..own(Self::KINDS[0])
+            },
+            Error::RowBeyond {
+                index,
+                row,
+                samples,
+            } => Details {
+                field: Some(Location::Element("rows", index)),
+                index: Some(index),
+                value: Some(Number::Count(row)),
+                bound: Some(Number::Count(samples)),
+                ..own(Self::KINDS[1])
+            },
+            Error::OutputLength {
+                output,
+                expected,
+                got,
+            } => Details {
+                field: Some(Location::Key(output.name())),
+                expected: Some(expected),
+                got: Some(got),
+                ..own(Self::KINDS[2])
+            },
         }
     }
 

@@ -4,7 +4,9 @@
 mod common;
 
 use gms_core::{Error as CoreError, Field, Scheme};
-use gms_dyn::{FrictionBank, Input, ParameterSet, RawElements, RawParams};
+use gms_dyn::{
+    ErrorClass, FrictionBank, Input, Location, Number, ParameterSet, RawElements, RawParams,
+};
 use gms_fit::{
     column_count, column_names, sensitivities, simulate_sets, Error, Output, Simulation,
 };
@@ -306,8 +308,10 @@ fn refusals_name_what_is_wrong() {
         matches!(diverged, Error::Core(CoreError::Diverged { .. })),
         "{diverged:?}"
     );
-    assert_eq!(diverged.kind(), gms_dyn::ErrorKind::Divergence);
-    assert_eq!(refused.kind(), gms_dyn::ErrorKind::Input);
+    assert_eq!(diverged.class(), ErrorClass::Divergence);
+    assert_eq!(diverged.kind(), "diverged");
+    assert_eq!(refused.class(), ErrorClass::Input);
+    assert_eq!(refused.details().sample, Some(6));
 }
 
 #[test]
@@ -403,5 +407,65 @@ fn messages_say_what_was_expected_and_what_came() {
     ];
     for (error, message) in messages {
         assert!(error.to_string().starts_with(message), "{error}");
+    }
+}
+
+/// The data an exception carries (docs/errors.md#error-data), without parsing the message.
+#[test]
+fn refusals_carry_their_data() {
+    let order = Error::RowOrder {
+        index: 2,
+        row: 3,
+        previous: 3,
+    }
+    .details();
+    assert_eq!(order.kind, "not_increasing");
+    assert_eq!(order.field, Some(Location::Element("rows", 2)));
+    assert_eq!(
+        (order.index, order.value, order.bound),
+        (Some(2), Some(Number::Count(3)), Some(Number::Count(3)))
+    );
+    let beyond = Error::RowBeyond {
+        index: 1,
+        row: 10,
+        samples: 10,
+    }
+    .details();
+    assert_eq!(beyond.kind, "out_of_range");
+    assert_eq!(
+        beyond.field.map(|field| field.to_string()).as_deref(),
+        Some("rows[1]")
+    );
+    assert_eq!(
+        (beyond.value, beyond.bound),
+        (Some(Number::Count(10)), Some(Number::Count(10)))
+    );
+    let length = Error::OutputLength {
+        output: Output::Jacobian,
+        expected: 14,
+        got: 15,
+    };
+    assert_eq!(length.kind(), "length_mismatch");
+    assert_eq!(length.class(), ErrorClass::Input);
+    let details = length.details();
+    assert_eq!(
+        (details.field, details.expected, details.got),
+        (Some(Location::Key("jacobian")), Some(14), Some(15))
+    );
+    let set = Error::Set {
+        set: 3,
+        error: CoreError::Diverged { index: 7 },
+    };
+    assert_eq!(set.class(), ErrorClass::Divergence);
+    let details = set.details();
+    assert_eq!(
+        (details.kind, details.channel, details.sample),
+        ("diverged", Some(3), Some(7))
+    );
+    for kind in Error::KINDS {
+        assert!(
+            kind.bytes().all(|b| b == b'_' || b.is_ascii_lowercase()),
+            "{kind}"
+        );
     }
 }

@@ -7,7 +7,7 @@ use gms_dyn::{Compensator, Level};
 use pyo3::prelude::*;
 
 use crate::convert::real;
-use crate::errors::{raise, InputError};
+use crate::errors::{lend, lend_mut, raise, raise_as, Class, Kind, Refusal};
 use crate::level::level_of;
 use crate::params::{parameter_set, PythonParams};
 
@@ -15,9 +15,13 @@ fn parse_mode(mode: &str) -> PyResult<Mode> {
     match mode {
         "feedforward" => Ok(Mode::Feedforward),
         "observer" => Ok(Mode::Observer),
-        other => Err(InputError::new_err(format!(
-            "`mode` must be 'feedforward' or 'observer', got {other:?}"
-        ))),
+        other => Err(Refusal::new(
+            Class::Input,
+            Kind::InvalidChoice,
+            format!("`mode` must be 'feedforward' or 'observer', got {other:?}"),
+        )
+        .field("mode")
+        .into()),
     }
 }
 
@@ -53,87 +57,99 @@ impl CompensatorEngine {
 
     /// The friction force to add to the command for this sample; `input` is the desired
     /// velocity (feedforward) or the measured position (observer).
-    fn step(&mut self, input: &Bound<'_, PyAny>) -> PyResult<f64> {
-        let name = match self.compensator.mode() {
+    fn step(slf: &Bound<'_, Self>, input: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let mut this = lend_mut(slf)?;
+        let name = match this.compensator.mode() {
             Mode::Feedforward => "v",
             Mode::Observer => "x",
         };
         let value = real(input, name)?;
-        self.compensator.step(value).map_err(|error| {
-            InputError::new_err(format!("{error}; the state and output are unchanged"))
+        this.compensator.step(value).map_err(|error| {
+            raise_as(
+                Class::Input,
+                error.into(),
+                format!("{error}; the state and output are unchanged"),
+            )
         })
     }
 
     /// Swaps in new parameters (same kind and number of elements); the hysteresis force
     /// carries over, so the output has no jump.
-    fn set_params(&mut self, params: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn set_params(slf: &Bound<'_, Self>, params: &Bound<'_, PyAny>) -> PyResult<()> {
+        let mut this = lend_mut(slf)?;
         let given = PythonParams::extract(params)?;
         match given.raw() {
             // Kind and size are compared before the values are checked.
-            Some(raw) => self.compensator.set_raw_params(&raw),
-            None => self.compensator.set_params(&given.validate()?),
+            Some(raw) => this.compensator.set_raw_params(&raw),
+            None => this.compensator.set_params(&given.validate()?),
         }
         .map_err(raise)?;
-        self.params = params.clone().unbind();
+        this.params = params.clone().unbind();
         Ok(())
     }
 
     /// Sets the position from which feedforward mode integrates the desired velocity to
     /// evaluate the level (observer mode takes it from its input).
-    fn set_position(&mut self, x: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn set_position(slf: &Bound<'_, Self>, x: &Bound<'_, PyAny>) -> PyResult<()> {
+        let mut this = lend_mut(slf)?;
         let x = real(x, "x")?;
-        self.compensator
-            .set_position(x)
-            .map_err(|error| InputError::new_err(format!("{error}; the position is unchanged")))
+        this.compensator.set_position(x).map_err(|error| {
+            raise_as(
+                Class::Input,
+                error.into(),
+                format!("{error}; the position is unchanged"),
+            )
+        })
     }
 
     /// The feedforward position: the start position plus the desired velocities integrated since.
     #[getter]
-    fn position(&self) -> f64 {
-        self.compensator.position()
+    fn position(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.compensator.position())
     }
 
     /// Back to rest: relaxed state, no previous position, output 0 (the position stays).
-    fn reset(&mut self) {
-        self.compensator.reset();
+    fn reset(slf: &Bound<'_, Self>) -> PyResult<()> {
+        lend_mut(slf)?.compensator.reset();
+        Ok(())
     }
 
     /// The last force returned by `step` (0 before the first).
     #[getter]
-    fn output(&self) -> f64 {
-        self.compensator.output()
+    fn output(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.compensator.output())
     }
 
     /// The parameters in use.
     #[getter]
-    fn params(&self, py: Python<'_>) -> Py<PyAny> {
-        self.params.clone_ref(py)
+    fn params(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        Ok(lend(slf)?.params.clone_ref(slf.py()))
     }
 
     /// The sample time [s].
     #[getter]
-    fn dt(&self) -> f64 {
-        self.compensator.dt()
+    fn dt(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.compensator.dt())
     }
 
     /// 'feedforward' or 'observer'.
     #[getter]
-    fn mode(&self) -> &'static str {
-        match self.compensator.mode() {
+    fn mode(slf: &Bound<'_, Self>) -> PyResult<&'static str> {
+        Ok(match lend(slf)?.compensator.mode() {
             Mode::Feedforward => "feedforward",
             Mode::Observer => "observer",
-        }
+        })
     }
 
     /// Number of Maxwell-slip elements N (0 for linear hysteresis).
     #[getter]
-    fn elements(&self) -> usize {
-        self.compensator.kind().elements()
+    fn elements(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.compensator.kind().elements())
     }
 
     /// Copies of (z, zeta, `last_position` or None).
-    fn _state(&self) -> (f64, Vec<f64>, Option<f64>) {
-        let state = self.compensator.state();
-        (state.z, state.zeta, state.last_position)
+    fn _state(slf: &Bound<'_, Self>) -> PyResult<(f64, Vec<f64>, Option<f64>)> {
+        let state = lend(slf)?.compensator.state();
+        Ok((state.z, state.zeta, state.last_position))
     }
 }

@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
 use crate::convert::{parse_scheme, zeros};
-use crate::errors::{raise_fit, InputError};
+use crate::errors::{raise_fit, Class, Kind, Refusal};
 use crate::params::parameter_set;
 
 /// The forces (T,), the Jacobian at the rows (R, P) and the names of its columns.
@@ -30,24 +30,35 @@ pub enum Rows<'py> {
 impl Rows<'_> {
     /// The indices as gms-fit takes them; their order and range are gms-fit's to check.
     fn indices(&self) -> PyResult<Vec<usize>> {
-        let refused = |index: usize, value: &dyn std::fmt::Display| {
-            InputError::new_err(format!(
-                "`rows` must be sample indices >= 0, got rows[{index}] = {value}"
-            ))
-        };
         match self {
             Rows::Signed(rows) => rows
                 .as_slice()?
                 .iter()
                 .enumerate()
-                .map(|(index, &row)| usize::try_from(row).map_err(|_| refused(index, &row)))
+                .map(|(index, &row)| {
+                    usize::try_from(row).map_err(|_| {
+                        Refusal::new(
+                            Class::Input,
+                            Kind::OutOfRange,
+                            format!(
+                                "`rows` must be sample indices >= 0, got rows[{index}] = {row}"
+                            ),
+                        )
+                        .field(format!("rows[{index}]"))
+                        .index(index)
+                        .value(row)
+                        .bound(0_i64)
+                        .into()
+                    })
+                })
                 .collect(),
-            Rows::Unsigned(rows) => rows
+            // u64 and usize are one width on the 64-bit targets the wheels are built for; a
+            // row beyond usize would be beyond any signal, which gms-fit refuses by its range.
+            Rows::Unsigned(rows) => Ok(rows
                 .as_slice()?
                 .iter()
-                .enumerate()
-                .map(|(index, &row)| usize::try_from(row).map_err(|_| refused(index, &row)))
-                .collect(),
+                .map(|&row| usize::try_from(row).unwrap_or(usize::MAX))
+                .collect()),
         }
     }
 }

@@ -5,7 +5,8 @@
 use gms_dyn::{Level, RippleTerms};
 use pyo3::prelude::*;
 
-use crate::errors::{raise, ParameterError};
+use crate::errors::{raise, Class, Kind, Refusal};
+use crate::params::not_real;
 
 /// One ripple's attributes, as given.
 struct GivenRipple {
@@ -21,19 +22,28 @@ fn read_level(level: &Bound<'_, PyAny>) -> PyResult<Level> {
         owner
             .getattr(key)?
             .extract::<f64>()
-            .map_err(|_| ParameterError::new_err(format!("`{name}` must be a real number")))
+            .map_err(|_| not_real(name, "a real number"))
     };
     let list = |owner: &Bound<'_, PyAny>, key: &str, name: &str| -> PyResult<Vec<f64>> {
-        owner.getattr(key)?.extract::<Vec<f64>>().map_err(|_| {
-            ParameterError::new_err(format!("`{name}` must be a sequence of real numbers"))
-        })
+        owner
+            .getattr(key)?
+            .extract::<Vec<f64>>()
+            .map_err(|_| not_real(name, "a sequence of real numbers"))
     };
     let trend = list(level, "trend", "trend")?;
     let trend: [f64; 2] = trend.as_slice().try_into().map_err(|_| {
-        ParameterError::new_err(format!(
-            "`trend` must have 2 coefficients (t1, t2), got {}",
-            trend.len()
-        ))
+        PyErr::from(
+            Refusal::new(
+                Class::Parameter,
+                Kind::WrongLength,
+                format!(
+                    "`trend` must have 2 coefficients (t1, t2), got {}",
+                    trend.len()
+                ),
+            )
+            .field("trend")
+            .lengths(2_usize, trend.len()),
+        )
     })?;
     let mut ripples = Vec::new();
     for (index, ripple) in level.getattr("ripples")?.try_iter()?.enumerate() {

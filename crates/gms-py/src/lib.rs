@@ -24,9 +24,11 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
-    m.add("ParameterError", py.get_type::<errors::ParameterError>())?;
-    m.add("InputError", py.get_type::<errors::InputError>())?;
-    m.add("DivergenceError", py.get_type::<errors::DivergenceError>())?;
+    for class in errors::Class::ALL {
+        m.add(class.name(), class.get(py)?)?;
+    }
+    // Every kind an error raised by the extension can have (docs/errors.md#kinds).
+    m.add("ERROR_KINDS", errors::kinds())?;
     // The version of the package: the workspace's, which maturin also gives the wheel.
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ELEMENTS", gms_dyn::MAX_ELEMENTS)?;

@@ -10,9 +10,9 @@ use numpy::{
 use pyo3::prelude::*;
 
 use crate::convert::{
-    channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
+    channel_count, parse_scheme, real, real_of, same_channels, scheme_name, single_channel, zeros,
 };
-use crate::errors::{raise, InputError, ParameterError};
+use crate::errors::{lend, lend_mut, raise, Class, Kind, Refusal};
 use crate::params::parameter_set;
 
 /// x, v, anchor, z of every channel (B,) and zeta (B, N).
@@ -43,14 +43,7 @@ impl MassEngine {
         channels: i64,
         scheme: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let number = |value: &Bound<'_, PyAny>, name: &str| {
-            real(value, name).map_err(|_| {
-                ParameterError::new_err(format!(
-                    "`{name}` must be a real number, got {}",
-                    value.repr().map(|r| r.to_string()).unwrap_or_default()
-                ))
-            })
-        };
+        let number = |value: &Bound<'_, PyAny>, name: &str| real_of(value, name, Class::Parameter);
         let mechanics = Mechanics {
             mass: number(mass, "mass")?,
             stiffness: stiffness.map_or(Ok(0.0), |value| number(value, "stiffness"))?,
@@ -67,63 +60,69 @@ impl MassEngine {
 
     /// The friction parameters.
     #[getter]
-    fn params(&self, py: Python<'_>) -> Py<PyAny> {
-        self.params.clone_ref(py)
+    fn params(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        Ok(lend(slf)?.params.clone_ref(slf.py()))
     }
     /// Mass m [kg].
     #[getter]
-    fn mass(&self) -> f64 {
-        self.bank.mechanics().mass
+    fn mass(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.bank.mechanics().mass)
     }
     /// Spring stiffness k [N/m] (0: no spring).
     #[getter]
-    fn stiffness(&self) -> f64 {
-        self.bank.mechanics().stiffness
+    fn stiffness(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.bank.mechanics().stiffness)
     }
     /// Speed of the spring's far end [m/s] (0: spring to ground).
     #[getter]
-    fn drive_speed(&self) -> f64 {
-        self.bank.mechanics().drive_speed
+    fn drive_speed(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.bank.mechanics().drive_speed)
     }
     /// Number of channels B.
     #[getter]
-    fn channels(&self) -> usize {
-        self.bank.channels()
+    fn channels(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.bank.channels())
     }
     /// Number of Maxwell-slip elements N (0 for linear hysteresis).
     #[getter]
-    fn elements(&self) -> usize {
-        self.bank.elements()
+    fn elements(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.bank.elements())
     }
     /// 'implicit' or 'explicit'.
     #[getter]
-    fn scheme(&self) -> &'static str {
-        scheme_name(self.bank.scheme())
+    fn scheme(slf: &Bound<'_, Self>) -> PyResult<&'static str> {
+        Ok(scheme_name(lend(slf)?.bank.scheme()))
     }
 
     /// One step of a single-channel system with applied force `u` held over `dt`; returns
     /// (friction force, position, velocity) at the end of the step.
-    fn step(&mut self, u: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<(f64, f64, f64)> {
-        single_channel(self.bank.channels(), "step", "system")?;
+    fn step(
+        slf: &Bound<'_, Self>,
+        u: &Bound<'_, PyAny>,
+        dt: &Bound<'_, PyAny>,
+    ) -> PyResult<(f64, f64, f64)> {
+        let mut this = lend_mut(slf)?;
+        single_channel(this.bank.channels(), "step", "system")?;
         let (u, dt) = (real(u, "u")?, real(dt, "dt")?);
-        let sample = self.bank.step(0, u, dt).map_err(raise)?;
+        let sample = this.bank.step(0, u, dt).map_err(raise)?;
         Ok((sample.friction, sample.x, sample.v))
     }
 
     /// Every channel over its row of `u` (B, T), checked finite by the caller, with the GIL
     /// released; returns (3, B, T): friction force, position, velocity.
     fn _run<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         u: PyReadonlyArray2<'py, f64>,
         dt: f64,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let py = slf.py();
+        let mut this = lend_mut(slf)?;
         let shape = [u.shape()[0], u.shape()[1]];
-        same_channels(shape[0], self.bank.channels(), "`u`", "system")?;
+        same_channels(shape[0], this.bank.channels(), "`u`", "system")?;
         let u = u.as_slice()?;
         let size = u.len();
         let mut out = zeros(3 * size, "u")?;
-        let bank = &mut self.bank;
+        let bank = &mut this.bank;
         py.detach(|| {
             let (friction, rest) = out.split_at_mut(size);
             let (x, v) = rest.split_at_mut(size);
@@ -136,28 +135,35 @@ impl MassEngine {
     /// Puts every channel at rest state: positions `x` and velocities `v` (B,), the spring's
     /// far end at 0, relaxed friction. Arrays are checked finite by the caller.
     fn _place(
-        &mut self,
+        slf: &Bound<'_, Self>,
         x: PyReadonlyArray1<'_, f64>,
         v: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<()> {
+        let mut this = lend_mut(slf)?;
         let (x, v) = (x.as_slice()?, v.as_slice()?);
-        let b = self.bank.channels();
+        let b = this.bank.channels();
         if x.len() != b || v.len() != b {
-            return Err(InputError::new_err(format!(
-                "`position` and `velocity` must have shape ({b},)"
-            )));
+            return Err(Refusal::new(
+                Class::Input,
+                Kind::Shape,
+                format!("`position` and `velocity` must have shape ({b},)"),
+            )
+            .field(if x.len() == b { "velocity" } else { "position" })
+            .into());
         }
-        self.bank.place(x, v);
+        this.bank.place(x, v);
         Ok(())
     }
 
     /// Copies of (x, v, anchor, z, zeta), shapes (B,) × 4 and (B, N).
-    fn _get_state<'py>(&self, py: Python<'py>) -> PyResult<StateArrays<'py>> {
-        let (b, n) = (self.bank.channels(), self.bank.elements());
+    fn _get_state<'py>(slf: &Bound<'py, Self>) -> PyResult<StateArrays<'py>> {
+        let py = slf.py();
+        let this = lend(slf)?;
+        let (b, n) = (this.bank.channels(), this.bank.elements());
         let (mut x, mut v, mut anchor, mut z) =
             (vec![0.0; b], vec![0.0; b], vec![0.0; b], vec![0.0; b]);
         let mut zeta = vec![0.0; b * n];
-        self.bank.read_state(MassStates {
+        this.bank.read_state(MassStates {
             x: &mut x,
             v: &mut v,
             anchor: &mut anchor,
@@ -175,14 +181,15 @@ impl MassEngine {
 
     /// Restores states checked by the Python side (shapes and finiteness).
     fn _set_state(
-        &mut self,
+        slf: &Bound<'_, Self>,
         x: PyReadonlyArray1<'_, f64>,
         v: PyReadonlyArray1<'_, f64>,
         anchor: PyReadonlyArray1<'_, f64>,
         z: PyReadonlyArray1<'_, f64>,
         zeta: PyReadonlyArray2<'_, f64>,
     ) -> PyResult<()> {
-        let (b, n) = (self.bank.channels(), self.bank.elements());
+        let mut this = lend_mut(slf)?;
+        let (b, n) = (this.bank.channels(), this.bank.elements());
         let (x, v, anchor, z, zeta) = (
             x.as_slice()?,
             v.as_slice()?,
@@ -191,10 +198,14 @@ impl MassEngine {
             zeta.as_slice()?,
         );
         if [x.len(), v.len(), anchor.len(), z.len()] != [b; 4] || zeta.len() != b * n {
-            return Err(InputError::new_err(format!(
-                "state must have shapes x, v, anchor, z ({b},) and zeta ({b}, {n})"
-            )));
+            return Err(Refusal::new(
+                Class::Input,
+                Kind::Shape,
+                format!("state must have shapes x, v, anchor, z ({b},) and zeta ({b}, {n})"),
+            )
+            .field("state")
+            .into());
         }
-        self.bank.write_state(x, v, anchor, z, zeta).map_err(raise)
+        this.bank.write_state(x, v, anchor, z, zeta).map_err(raise)
     }
 }

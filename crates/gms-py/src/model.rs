@@ -11,7 +11,7 @@ use gms_dyn::{FrictionBank, Input};
 use crate::convert::{
     channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
 };
-use crate::errors::{raise, InputError};
+use crate::errors::{lend, lend_mut, raise, Class, Kind, Refusal};
 use crate::level::level_of;
 use crate::params::parameter_set;
 
@@ -62,71 +62,78 @@ impl Engine {
 
     /// The parameters this model was built from.
     #[getter]
-    fn params(&self, py: Python<'_>) -> Py<PyAny> {
-        self.params.clone_ref(py)
+    fn params(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        Ok(lend(slf)?.params.clone_ref(slf.py()))
     }
 
     /// Number of channels B.
     #[getter]
-    fn channels(&self) -> usize {
-        self.bank.channels()
+    fn channels(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.bank.channels())
     }
 
     /// Number of Maxwell-slip elements N (0 for linear hysteresis).
     #[getter]
-    fn elements(&self) -> usize {
-        self.bank.elements()
+    fn elements(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.bank.elements())
     }
 
     /// 'implicit' or 'explicit'.
     #[getter]
-    fn scheme(&self) -> &'static str {
-        scheme_name(self.bank.scheme())
+    fn scheme(slf: &Bound<'_, Self>) -> PyResult<&'static str> {
+        Ok(scheme_name(lend(slf)?.bank.scheme()))
     }
 
     /// One step of a single-channel model with velocity `v` held over `dt`; returns the force.
-    fn step(&mut self, v: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        single_channel(self.bank.channels(), "step", "model")?;
+    fn step(slf: &Bound<'_, Self>, v: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let mut this = lend_mut(slf)?;
+        single_channel(this.bank.channels(), "step", "model")?;
         let (v, dt) = (real(v, "v")?, real(dt, "dt")?);
-        self.bank.step(0, v, dt, Input::Velocity).map_err(raise)
+        this.bank.step(0, v, dt, Input::Velocity).map_err(raise)
     }
 
     /// One step of a single-channel model with position input `x`; returns the force.
-    fn step_position(&mut self, x: &Bound<'_, PyAny>, dt: &Bound<'_, PyAny>) -> PyResult<f64> {
-        single_channel(self.bank.channels(), "step_position", "model")?;
+    fn step_position(
+        slf: &Bound<'_, Self>,
+        x: &Bound<'_, PyAny>,
+        dt: &Bound<'_, PyAny>,
+    ) -> PyResult<f64> {
+        let mut this = lend_mut(slf)?;
+        single_channel(this.bank.channels(), "step_position", "model")?;
         let (x, dt) = (real(x, "x")?, real(dt, "dt")?);
-        self.bank.step(0, x, dt, Input::Position).map_err(raise)
+        this.bank.step(0, x, dt, Input::Position).map_err(raise)
     }
 
     /// Steps every channel once; `input` has shape (B,), already float64 and finite.
     fn _step_channels<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         input: PyReadonlyArray1<'py, f64>,
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let mut this = lend_mut(slf)?;
         let input = input.as_slice()?;
         let mut out = vec![0.0; input.len()];
-        self.bank
+        this.bank
             .run(input, dt, kind(position), &mut out)
             .map_err(raise)?;
-        Ok(PyArray1::from_vec(py, out))
+        Ok(PyArray1::from_vec(slf.py(), out))
     }
 
     /// Runs every channel over its row of `input`, shape (B, T), with the GIL released.
     fn _run<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         input: PyReadonlyArray2<'py, f64>,
         dt: f64,
         position: bool,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let py = slf.py();
+        let mut this = lend_mut(slf)?;
         let shape = [input.shape()[0], input.shape()[1]];
-        same_channels(shape[0], self.bank.channels(), "input", "model")?;
+        same_channels(shape[0], this.bank.channels(), "input", "model")?;
         let input = input.as_slice()?;
         let mut out = zeros(input.len(), "input")?;
-        let bank = &mut self.bank;
+        let bank = &mut this.bank;
         py.detach(|| bank.run(input, dt, kind(position), &mut out))
             .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape(shape)
@@ -136,18 +143,19 @@ impl Engine {
     /// released, the forces scaled by the position-dependent `level`
     /// (docs/model.md#position-dependent-level).
     fn _run_position_level<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         input: PyReadonlyArray2<'py, f64>,
         dt: f64,
         level: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let py = slf.py();
         let level = level_of(level)?;
+        let mut this = lend_mut(slf)?;
         let shape = [input.shape()[0], input.shape()[1]];
-        same_channels(shape[0], self.bank.channels(), "input", "model")?;
+        same_channels(shape[0], this.bank.channels(), "input", "model")?;
         let input = input.as_slice()?;
         let mut out = zeros(input.len(), "input")?;
-        let bank = &mut self.bank;
+        let bank = &mut this.bank;
         py.detach(|| bank.run_position_level(input, dt, &level, &mut out))
             .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape(shape)
@@ -156,36 +164,44 @@ impl Engine {
     /// Runs the single channel over positions `x`, shape (T,), with the GIL released; returns
     /// the forces and the deflection z after every sample.
     fn _run_position_deflection<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         x: PyReadonlyArray1<'py, f64>,
         dt: f64,
     ) -> PyResult<TraceArrays<'py>> {
-        if self.bank.channels() != 1 {
-            return Err(InputError::new_err(format!(
-                "`trace_position` runs one channel, this model has {}",
-                self.bank.channels()
-            )));
+        let py = slf.py();
+        let mut this = lend_mut(slf)?;
+        let channels = this.bank.channels();
+        if channels != 1 {
+            return Err(Refusal::new(
+                Class::Input,
+                Kind::ChannelMismatch,
+                format!("`trace_position` runs one channel, this model has {channels}"),
+            )
+            .lengths(1_usize, channels)
+            .into());
         }
         let x = x.as_slice()?;
         let (mut out, mut z) = (zeros(x.len(), "x")?, zeros(x.len(), "x")?);
-        let bank = &mut self.bank;
+        let bank = &mut this.bank;
         py.detach(|| bank.trace_position(0, x, dt, &mut out, &mut z))
             .map_err(raise)?;
         Ok((PyArray1::from_vec(py, out), PyArray1::from_vec(py, z)))
     }
 
     /// Relaxes every channel: z = 0, elements undeflected, no previous position.
-    fn reset(&mut self) {
-        self.bank.reset();
+    fn reset(slf: &Bound<'_, Self>) -> PyResult<()> {
+        lend_mut(slf)?.bank.reset();
+        Ok(())
     }
 
     /// Copies of (z, zeta, `last_position`, `has_last_position`), shapes (B,), (B, N), (B,), (B,).
-    fn _get_state<'py>(&self, py: Python<'py>) -> PyResult<StateArrays<'py>> {
-        let (b, n) = (self.bank.channels(), self.bank.elements());
+    fn _get_state<'py>(slf: &Bound<'py, Self>) -> PyResult<StateArrays<'py>> {
+        let py = slf.py();
+        let this = lend(slf)?;
+        let (b, n) = (this.bank.channels(), this.bank.elements());
         let (mut z, mut memory) = (vec![0.0; b], vec![0.0; b * n]);
         let (mut last, mut has_last) = (vec![0.0; b], vec![false; b]);
-        self.bank
+        this.bank
             .read_state(&mut z, &mut memory, &mut last, &mut has_last);
         Ok((
             PyArray1::from_vec(py, z),
@@ -197,22 +213,29 @@ impl Engine {
 
     /// Restores states checked by the Python side (shapes and finiteness).
     fn _set_state(
-        &mut self,
+        slf: &Bound<'_, Self>,
         z: PyReadonlyArray1<'_, f64>,
         zeta: PyReadonlyArray2<'_, f64>,
         last: PyReadonlyArray1<'_, f64>,
         has_last: PyReadonlyArray1<'_, bool>,
     ) -> PyResult<()> {
-        let (b, n) = (self.bank.channels(), self.bank.elements());
+        let mut this = lend_mut(slf)?;
+        let (b, n) = (this.bank.channels(), this.bank.elements());
         let (z, zeta) = (z.as_slice()?, zeta.as_slice()?);
         let (last, has_last) = (last.as_slice()?, has_last.as_slice()?);
         if z.len() != b || zeta.len() != b * n || last.len() != b || has_last.len() != b {
-            return Err(InputError::new_err(format!(
-                "state must have shapes z ({b},), zeta ({b}, {n}), last_position ({b},), \
-                 has_last_position ({b},)"
-            )));
+            return Err(Refusal::new(
+                Class::Input,
+                Kind::Shape,
+                format!(
+                    "state must have shapes z ({b},), zeta ({b}, {n}), last_position ({b},), \
+                     has_last_position ({b},)"
+                ),
+            )
+            .field("state")
+            .into());
         }
-        self.bank
+        this.bank
             .write_state(z, zeta, last, has_last)
             .map_err(raise)
     }

@@ -9,12 +9,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
 use crate::convert::real;
-use crate::errors::{InputError, ParameterError};
-
-/// A refused update, run or prediction: always an `InputError`.
-fn input_error(error: gms_dyn::Error) -> PyErr {
-    InputError::new_err(error.to_string())
-}
+use crate::errors::{input_error, lend, lend_mut, raise_as, Class};
 
 /// Recursive least squares on the friction terms that enter linearly.
 #[pyclass(subclass, module = "leuven_rt._core")]
@@ -41,81 +36,85 @@ impl OnlineIdentifier {
         };
         // Every construction error is about the identifier's parameters.
         let inner = gms_dyn::OnlineIdentifier::new(&delta, &initial, settings)
-            .map_err(|error| ParameterError::new_err(error.to_string()))?;
+            .map_err(|error| raise_as(Class::Parameter, error, error.to_string()))?;
         Ok(Self { inner })
     }
 
     /// Number of elements N.
     #[getter]
-    fn elements(&self) -> usize {
-        self.inner.elements()
+    fn elements(slf: &Bound<'_, Self>) -> PyResult<usize> {
+        Ok(lend(slf)?.inner.elements())
     }
 
     /// The break deflections Δᵢ.
     #[getter(Delta)]
-    fn delta(&self) -> Vec<f64> {
-        self.inner.delta().to_vec()
+    fn delta(slf: &Bound<'_, Self>) -> PyResult<Vec<f64>> {
+        Ok(lend(slf)?.inner.delta().to_vec())
     }
 
     /// One sample; returns the a priori prediction error f − f̂.
     fn update(
-        &mut self,
+        slf: &Bound<'_, Self>,
         x: &Bound<'_, PyAny>,
         v: &Bound<'_, PyAny>,
         f: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
+        let mut this = lend_mut(slf)?;
         let (x, v, f) = (real(x, "x")?, real(v, "v")?, real(f, "f")?);
-        self.inner.update(x, v, f).map_err(input_error)
+        this.inner.update(x, v, f).map_err(input_error)
     }
 
     /// The estimate after each sample of a log, shape (T, N + 3); the GIL is released.
     fn _run<'py>(
-        &mut self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         x: PyReadonlyArray1<'py, f64>,
         v: PyReadonlyArray1<'py, f64>,
         f: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let py = slf.py();
+        let mut this = lend_mut(slf)?;
         let (x, v, f) = (x.as_slice()?, v.as_slice()?, f.as_slice()?);
-        let shape = [x.len(), self.inner.parameters()];
+        let shape = [x.len(), this.inner.parameters()];
         let mut out = vec![0.0; shape[0] * shape[1]];
-        let inner = &mut self.inner;
+        let inner = &mut this.inner;
         py.detach(|| inner.run(x, v, f, &mut out))
             .map_err(input_error)?;
         PyArray1::from_vec(py, out).reshape(shape)
     }
 
     /// The force the current estimate predicts for (x, v); nothing changes.
-    fn predict(&self, x: f64, v: f64) -> PyResult<f64> {
-        self.inner.predict(x, v).map_err(input_error)
+    fn predict(slf: &Bound<'_, Self>, x: f64, v: f64) -> PyResult<f64> {
+        lend(slf)?.inner.predict(x, v).map_err(input_error)
     }
 
     /// A copy of the estimate [W₀, …, W_{N−1}, Fc, sigma2, offset].
-    fn _estimate<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_vec(py, self.inner.estimate())
+    fn _estimate<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        Ok(PyArray1::from_vec(slf.py(), lend(slf)?.inner.estimate()))
     }
 
     /// A copy of the covariance P, shape (N + 3, N + 3).
-    fn _covariance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let parameters = self.inner.parameters();
+    fn _covariance<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let this = lend(slf)?;
+        let parameters = this.inner.parameters();
         // Column-major storage of a symmetric matrix reads the same row-major.
-        PyArray1::from_vec(py, self.inner.covariance()).reshape([parameters, parameters])
+        PyArray1::from_vec(slf.py(), this.inner.covariance()).reshape([parameters, parameters])
     }
 
     /// trace(P).
     #[getter]
-    fn covariance_trace(&self) -> f64 {
-        self.inner.covariance_trace()
+    fn covariance_trace(slf: &Bound<'_, Self>) -> PyResult<f64> {
+        Ok(lend(slf)?.inner.covariance_trace())
     }
 
     /// How many times the covariance left its range and was reset since construction or reset.
     #[getter]
-    fn covariance_resets(&self) -> u64 {
-        self.inner.covariance_resets()
+    fn covariance_resets(slf: &Bound<'_, Self>) -> PyResult<u64> {
+        Ok(lend(slf)?.inner.covariance_resets())
     }
 
     /// Back to the state of construction.
-    fn reset(&mut self) {
-        self.inner.reset();
+    fn reset(slf: &Bound<'_, Self>) -> PyResult<()> {
+        lend_mut(slf)?.inner.reset();
+        Ok(())
     }
 }

@@ -5,7 +5,18 @@
 use gms_dyn::{ParameterSet, RawElements, RawParams};
 use pyo3::prelude::*;
 
-use crate::errors::{raise, ParameterError};
+use crate::errors::{raise, Class, Kind, Refusal};
+
+/// The `ParameterError` for attribute `key` of a parameter object that is not `what`.
+pub fn not_real(key: &str, what: &str) -> PyErr {
+    Refusal::new(
+        Class::Parameter,
+        Kind::NotReal,
+        format!("`{key}` must be {what}"),
+    )
+    .field(key)
+    .into()
+}
 
 /// The attributes of a Python `Params`, exactly as given (`None` levels resolved).
 pub struct GivenParams {
@@ -30,7 +41,7 @@ impl GivenParams {
             params
                 .getattr(key)?
                 .extract::<f64>()
-                .map_err(|_| ParameterError::new_err(format!("`{key}` must be a real number")))
+                .map_err(|_| not_real(key, "a real number"))
         };
         let optional = |key: &str| -> PyResult<Option<f64>> {
             let value = params.getattr(key)?;
@@ -45,9 +56,10 @@ impl GivenParams {
             if value.is_none() {
                 return Ok(None);
             }
-            value.extract::<Vec<f64>>().map(Some).map_err(|_| {
-                ParameterError::new_err(format!("`{key}` must be a sequence of real numbers"))
-            })
+            value
+                .extract::<Vec<f64>>()
+                .map(Some)
+                .map_err(|_| not_real(key, "a sequence of real numbers"))
         };
         let (fc, fs) = (number("Fc")?, number("Fs")?);
         Ok(Self {

@@ -4,7 +4,7 @@
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 
-use crate::errors::InputError;
+use crate::errors::input_error;
 
 /// The responses ψᵢ ∈ [−1, 1] of elements with break deflections `delta` driven by `x`, all
 /// relaxed at the first sample, shape (T, N); computed with the GIL released.
@@ -18,6 +18,6 @@ pub fn slip_responses<'py>(
     let mut out = vec![0.0; x.len() * delta.len()];
     // Both inputs are the caller's signals here, so every refusal is an input error.
     py.detach(|| gms_dyn::slip_responses(x, delta, &mut out))
-        .map_err(|error| InputError::new_err(error.to_string()))?;
+        .map_err(input_error)?;
     PyArray1::from_vec(py, out).reshape([x.len(), delta.len()])
 }

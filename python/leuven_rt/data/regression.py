@@ -48,13 +48,13 @@ class LinearFit:
 def regressor_matrix(regressors: Mapping[str, ArrayLike], samples: int) -> tuple[list[str], FloatArray]:
     """The (samples, columns) matrix of the named columns; a scalar column is broadcast."""
     if not regressors:
-        raise DataError("at least one regressor column is needed, got none")
+        raise DataError("at least one regressor column is needed, got none", kind="too_few", value=0, bound=1)
     names = list(regressors)
     columns = []
     for name in names:
         column = np.broadcast_to(np.asarray(regressors[name], dtype=np.float64), (samples,))
         if not np.isfinite(column).all():
-            raise DataError(f"regressor `{name}` must be finite everywhere")
+            raise DataError(f"regressor `{name}` must be finite everywhere", kind="not_finite", field=name)
         columns.append(column)
     return names, np.column_stack(columns)
 
@@ -86,15 +86,29 @@ def fit_linear(
     target = np.asarray(y, dtype=np.float64)
     names, matrix = regressor_matrix(regressors, target.size)
     if target.ndim != 1 or not np.isfinite(target).all():
-        raise DataError("the fitted signal must be one-dimensional and finite")
+        raise DataError(
+            "the fitted signal must be one-dimensional and finite",
+            kind="shape" if target.ndim != 1 else "not_finite",
+            field="y",
+        )
     if target.size < len(names):
         raise DataError(
-            f"need at least {len(names)} samples for {len(names)} coefficients, got {target.size}"
+            f"need at least {len(names)} samples for {len(names)} coefficients, got {target.size}",
+            kind="too_few",
+            field="y",
+            value=target.size,
+            bound=len(names),
         )
     bounded = set(names) if nonnegative is True else set(nonnegative or ())
     unknown = bounded - set(names)
     if unknown:
-        raise DataError(f"`nonnegative` names columns that are not regressors: {sorted(unknown)}")
+        raise DataError(
+            f"`nonnegative` names columns that are not regressors: {sorted(unknown)}",
+            kind="unknown_key",
+            field="nonnegative",
+            value=sorted(unknown)[0],
+            expected=names,
+        )
     # Everything below works on the small triangular factor: ‖Aθ − y‖² = ‖Rθ − Qᵀy‖² + const
     # for A = QR, so the solution, the singular values and the covariance are those of A. One
     # Householder QR of [A y] gives both R and Qᵀy without forming Q.

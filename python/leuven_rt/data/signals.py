@@ -12,9 +12,16 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal
 
+from .._checks import real_number
 from .._typing import FloatArray
 from ..errors import DataError
 from .records import MotionData
+
+#: The fewest periods of the cutoff a record must hold: the zero-phase filter's transients last
+#: about two periods at each end (docs/effects.md#signals), and far below one period per record
+#: the filter's design is singular (a LinAlgError at 1e-6 Hz) or passes nothing of the motion.
+#: The default cutoff, a tenth of the Nyquist frequency, gives ten on the shortest record.
+MIN_CUTOFF_PERIODS = 8
 
 
 @dataclass(frozen=True, eq=False)
@@ -27,11 +34,41 @@ class Derivatives:
     cutoff: float
 
 
-def lowpass(values: FloatArray, dt: float, cutoff: float, order: int = 4) -> FloatArray:
-    """Butterworth low-pass of ``order`` at ``cutoff`` [Hz], run forward and backward (zero phase)."""
+def check_cutoff(cutoff: object, dt: float, samples: int) -> float:
+    """``cutoff`` [Hz] as a float, if a record of ``samples`` samples at step ``dt`` supports it:
+    below the Nyquist frequency 0.5/dt, and at least :data:`MIN_CUTOFF_PERIODS` periods of it
+    in the record's ``samples·dt`` seconds. Every cutoff given to a filter passes here;
+    :class:`DataError` otherwise, with the bound."""
+    value = real_number(cutoff, "cutoff", DataError)
     nyquist = 0.5 / dt
-    if not 0.0 < cutoff < nyquist:
-        raise DataError(f"`cutoff` must be in (0, {nyquist:g}) Hz (the Nyquist frequency), got {cutoff!r}")
+    if not value < nyquist:  # NaN too
+        raise DataError(
+            f"`cutoff` must be below {nyquist:g} Hz (the Nyquist frequency of a {dt:g} s step), "
+            f"got {value!r} Hz",
+            kind="out_of_range",
+            field="cutoff",
+            value=value,
+            bound=nyquist,
+        )
+    duration = samples * dt
+    lowest = MIN_CUTOFF_PERIODS / duration
+    if not value >= lowest:
+        raise DataError(
+            f"`cutoff` must be at least {lowest:.3g} Hz for a record of {duration:g} s ({samples} samples): "
+            f"the record must hold {MIN_CUTOFF_PERIODS} periods of the cutoff for the filter's transients "
+            f"at its ends to die out, got {value!r} Hz",
+            kind="out_of_range",
+            field="cutoff",
+            value=value,
+            bound=lowest,
+        )
+    return value
+
+
+def lowpass(values: FloatArray, dt: float, cutoff: float, order: int = 4) -> FloatArray:
+    """Butterworth low-pass of ``order`` at ``cutoff`` [Hz] (checked by :func:`check_cutoff`),
+    run forward and backward (zero phase)."""
+    cutoff = check_cutoff(cutoff, dt, values.size)
     sos = signal.butter(order, cutoff, fs=1.0 / dt, output="sos")
     return np.asarray(signal.sosfiltfilt(sos, values), dtype=np.float64)
 
@@ -45,10 +82,12 @@ def estimate_derivatives(data: MotionData, cutoff: float | None = None, order: i
     """Velocity and acceleration by a zero-phase Butterworth low-pass and central differences.
 
     The measured ``v`` is used (filtered the same way) where the data has it; otherwise the
-    velocity is the central difference of the filtered position.
+    velocity is the central difference of the filtered position. ``cutoff`` [Hz]: default a
+    tenth of the Nyquist frequency; one the record does not support is refused
+    (:func:`check_cutoff`).
     """
     dt = data.dt
-    cutoff = default_cutoff(dt) if cutoff is None else float(cutoff)
+    cutoff = default_cutoff(dt) if cutoff is None else check_cutoff(cutoff, dt, data.samples)
     x = lowpass(data.x, dt, cutoff, order)
     v = np.gradient(x, dt) if data.v is None else lowpass(data.v, dt, cutoff, order)
     return Derivatives(x=x, v=v, a=np.gradient(v, dt), cutoff=cutoff)

@@ -23,5 +23,11 @@ def element_deflections(x: FloatArray, Delta: FloatArray) -> FloatArray:
     Delta = np.ascontiguousarray(Delta, dtype=np.float64)
     for name, values in (("x", x), ("Delta", Delta)):
         if values.ndim != 1:
-            raise InputError(f"`{name}` must be one-dimensional, got shape {values.shape}")
+            raise InputError(
+                f"`{name}` must be one-dimensional, got shape {values.shape}",
+                kind="shape",
+                field=name,
+                expected="(T,)" if name == "x" else "(N,)",
+                got=values.shape,
+            )
     return slip_responses(x, Delta)

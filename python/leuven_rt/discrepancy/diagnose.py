@@ -15,18 +15,16 @@ import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import NoReturn
 
 import numpy as np
 from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
-from tqdm import tqdm
 
-from .._extras import progress_wanted
 from .._typing import FloatArray
-from ..data.records import DataLike, as_motion_data
+from ..data.records import DataLike, MotionData, as_motion_data
 from ..data.signals import noise_floor
-from ..errors import InputError
+from ..errors import InputError, shown
+from ..progress import Progress, reporting
 from ..units import unit_names
 from .drive import Drive
 from .effects import CATALOGUE, DRIFT, parse_effects
@@ -71,26 +69,49 @@ class _Selection:
     """The model of each residual."""
 
 
+@dataclass
+class _Fits:
+    """The candidate fits made so far and known to come, for the progress report."""
+
+    report: Progress
+    done: int = 0
+    total: int = 0
+
+
 def diagnose(
     data: DataLike,
     baseline: str | Sequence[str] = DEFAULT_BASELINE,
     *,
     settings: Settings | None = None,
-    progress: bool = False,
+    progress: bool | Progress = False,
 ) -> Diagnosis:
     """Names the catalogue effects (docs/effects.md) that ``baseline`` misses in ``data``.
 
     ``data``: a :class:`~leuven_rt.MotionData`, a ``.csv`` (t, x, f[, v]) or EMPS ``.mat`` path,
     or a mapping of columns. ``baseline``: effect names, as a list or comma-separated.
     ``settings``: the thresholds (:class:`~leuven_rt.discrepancy.Settings`; the defaults when
-    None). ``progress``: a tqdm progress bar on stderr. Bad input raises :class:`InputError`.
+    None). ``progress``: report the stages on stderr (True: a bar on a terminal, lines otherwise;
+    or a :class:`~leuven_rt.progress.Progress`). Bad input raises :class:`InputError`.
     """
     effects = parse_effects(baseline)
     if settings is None:
         settings = Settings()
     elif not isinstance(settings, Settings):
-        raise InputError(f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {settings!r:.80}")
+        raise InputError(
+            f"`settings` must be a leuven_rt.discrepancy.Settings or None, got {shown(settings)!r:.80}",
+            kind="wrong_type",
+            field="settings",
+            value=settings,
+        )
     record = as_motion_data(data)
+    with reporting(progress, "diagnose") as report:
+        return _diagnose(record, effects, settings, report)
+
+
+def _diagnose(
+    record: MotionData, effects: tuple[str, ...], settings: Settings, report: Progress
+) -> Diagnosis:
+    report.stage("signals")
     full = compute_features(record)
     stride = math.ceil(np.count_nonzero(full.usable) / FIT_SAMPLES)
     features = thin(full, stride) if stride > 1 else full
@@ -106,11 +127,9 @@ def diagnose(
 
     # One BLAS thread: the fits are many small factorisations, which threads slow down on a busy
     # machine (a QR 4-10x slower with the cores shared) instead of speeding up.
-    with (
-        threadpool_limits(limits=1, user_api="blas"),
-        tqdm(desc="diagnose", unit=" fits", disable=not progress_wanted(progress), leave=False) as bar,
-    ):
-        run = _select(effects, features, folds, noise, settings, bar, unit, baseline_fit)
+    with threadpool_limits(limits=1, user_api="blas"):
+        fits = _Fits(report)
+        run = _select(effects, features, folds, noise, settings, fits, unit, baseline_fit)
         # A level that changes over the record makes effects look useful that are not there: when
         # the final model still gains from a level drifting in time, the rounds are run again
         # with the drift fitted alongside, and the drift is reported as unexplained.
@@ -121,7 +140,7 @@ def diagnose(
             dataclasses.replace(settings, significance=settings.drift),
         )
         if drift:
-            run = _select((*effects, DRIFT.name), features, folds, noise, settings, bar, unit)
+            run = _select((*effects, DRIFT.name), features, folds, noise, settings, fits, unit)
 
     final, residuals = run.features, run.residuals
     if features is not full:  # every sample's residuals, for the report
@@ -150,7 +169,7 @@ def _select(
     folds: list[NDArray[np.bool_]],
     noise: float,
     settings: Settings,
-    bar: tqdm[NoReturn],
+    fits: _Fits,
     unit: str,
     model: ModelFit | None = None,
 ) -> _Selection:
@@ -173,10 +192,10 @@ def _select(
                 known["position_dependence"] = position
         held = _held(run.model, run.features)
         fresh = iter(
-            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, bar, held)
+            _score(run.effects, [(n,) for n in candidates if n not in known], run.features, folds, fits, held)
         )
         scores = [known[name] if name in known else next(fresh) for name in candidates]  # catalogue order
-        scores = _searched(current, scores, run.features, folds, bar, held)
+        scores = _searched(current, scores, run.features, folds, fits, held)
         best = _choose_present(current, scores, run.features, noise, settings)
         if best is None and current.mse > (1.0 + settings.joint) * noise**2 and len(candidates) > 1:
             # No effect helps alone, yet the model is far from the data: some effects only help
@@ -185,8 +204,8 @@ def _select(
             ranked = sorted(scores, key=lambda score: score.mse)[:PAIRED]
             gaining = [score.effects[-1] for score in ranked if score.mse < current.mse]
             pairs: list[tuple[str, ...]] = list(itertools.combinations(gaining, 2))
-            paired = _score(run.effects, pairs, run.features, folds, bar, held)
-            paired = _searched(current, paired, run.features, folds, bar, held)
+            paired = _score(run.effects, pairs, run.features, folds, fits, held)
+            paired = _searched(current, paired, run.features, folds, fits, held)
             best = _choose_present(current, paired, run.features, noise, settings)
         if best is None:
             break
@@ -259,16 +278,16 @@ def _score(
     additions: list[tuple[str, ...]],
     features: Features,
     folds: list[NDArray[np.bool_]],
-    bar: tqdm[NoReturn],
+    fits: _Fits,
     held: tuple[Drive, Features] | None = None,
 ) -> list[Score]:
-    bar.total = (bar.total or 0) + len(additions)
-    bar.refresh()
+    fits.total += len(additions)
     scores = []
     for addition in additions:
-        bar.set_postfix_str("+".join(addition))
+        fits.report.stage("fits", fits.done, fits.total, "+".join(addition))
         scores.append(cross_validate((*effects, *addition), features, folds, held))
-        bar.update(1)
+        fits.done += 1
+    fits.report.stage("fits", fits.done, fits.total)
     return scores
 
 
@@ -277,7 +296,7 @@ def _searched(
     scores: list[Score],
     features: Features,
     folds: list[NDArray[np.bool_]],
-    bar: tqdm[NoReturn],
+    fits: _Fits,
     held: tuple[Drive, Features] | None,
 ) -> list[Score]:
     """``scores``, made with the drive ``held``, with the :data:`SEARCHED` best of those that gain
@@ -287,7 +306,7 @@ def _searched(
     gaining = sorted((score for score in scores if score.mse < current.mse), key=lambda score: score.mse)
     chosen = gaining[:SEARCHED]
     additions = [score.effects[len(current.effects) :] for score in chosen]
-    again = dict(zip(map(id, chosen), _score(current.effects, additions, features, folds, bar), strict=True))
+    again = dict(zip(map(id, chosen), _score(current.effects, additions, features, folds, fits), strict=True))
     return [again.get(id(score), score) for score in scores]
 
 

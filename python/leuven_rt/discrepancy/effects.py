@@ -15,7 +15,7 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from .._typing import FloatArray
-from ..errors import InputError
+from ..errors import InputError, shown
 from .features import ELEMENTS, Features
 from .ripple import ripple_columns
 
@@ -137,17 +137,34 @@ def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tup
     given: object = names  # checked as what may come, not as what is declared
     if not isinstance(given, (str, Sequence)) or isinstance(given, (bytes, bytearray)):
         raise InputError(
-            f"`{argument}` must be effect names, as a list or comma-separated, got {names!r:.80}"
+            f"`{argument}` must be effect names, as a list or comma-separated, got {shown(names)!r:.80}",
+            kind="wrong_type",
+            field=argument,
+            value=names,
         )
     items = [name.strip() for name in names.split(",")] if isinstance(names, str) else list(names)
     items = [name for name in items if name]
     if any(not isinstance(name, str) for name in items):
-        raise InputError(f"`{argument}` must be effect names (strings), got {items!r}")
+        raise InputError(
+            f"`{argument}` must be effect names (strings), got {shown(items)!r}",
+            kind="wrong_type",
+            field=argument,
+            value=next(name for name in items if not isinstance(name, str)),
+        )
     unknown = [name for name in items if name not in CATALOGUE]
     if unknown:
         raise InputError(
-            f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}"
+            f"`{argument}` names unknown effects {unknown}: expected names among {list(CATALOGUE)}",
+            kind="invalid_choice",
+            field=argument,
+            value=unknown[0],
+            expected=list(CATALOGUE),
         )
     if len(set(items)) != len(items):
-        raise InputError(f"`{argument}` repeats effects: got {items}")
+        raise InputError(
+            f"`{argument}` repeats effects: got {items}",
+            kind="repeated",
+            field=argument,
+            value=next(name for name in items if items.count(name) > 1),
+        )
     return tuple(items)

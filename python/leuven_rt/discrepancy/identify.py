@@ -13,10 +13,11 @@ import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from ..data.records import DataLike, as_motion_data
+from ..data.records import DataLike, MotionData, as_motion_data
 from ..data.signals import estimate_derivatives
 from ..modelfile import ModelFile
 from ..params import Params
+from ..progress import Progress, reporting
 from .deploy import deploy
 from .diagnose import DEFAULT_BASELINE, diagnose
 from .refine import refine
@@ -51,7 +52,7 @@ def identify(
     baseline: str | Sequence[str] = DEFAULT_BASELINE,
     *,
     settings: Settings | None = None,
-    progress: bool = False,
+    progress: bool | Progress = False,
 ) -> Identification:
     """Fits the friction model ``data`` supports and returns its model file (module documentation).
 
@@ -59,7 +60,15 @@ def identify(
     of columns. ``baseline``, ``settings``, ``progress``: as for :func:`~leuven_rt.diagnose`.
     """
     record = as_motion_data(data)
+    with reporting(progress, "identify") as reporter:
+        return _identify(record, baseline, settings, reporter)
+
+
+def _identify(
+    record: MotionData, baseline: str | Sequence[str], settings: Settings | None, progress: Progress
+) -> Identification:
     diagnosis = diagnose(record, baseline, settings=settings, progress=progress)
+    progress.stage("model file")
     report = diagnosis.to_dict()
     report.pop("final_model", None)  # the file holds the model itself
     if record.notes:
@@ -68,7 +77,7 @@ def identify(
     # predict's signals (docs/data-and-reports.md#predict): the file is refined on what it will run on
     motion = estimate_derivatives(record)
     usable = diagnosis.features.usable
-    model, before, after = refine(deployment.model, motion.x, motion.a, record.dt, record.f, usable)
+    model, before, after = refine(deployment.model, motion.x, motion.a, record.dt, record.f, usable, progress)
     fitted = {**(model.report or {}), "simulation_rms": {"mapped": before, "refined": after}}
     model = dataclasses.replace(model, report=fitted)
     return Identification(model, diagnosis, deployment.warnings)

@@ -25,6 +25,7 @@ from ..level import PositionLevel, Ripple
 from ..modelfile import ModelFile
 from ..params import Params
 from ..prediction import model_forces
+from ..progress import Progress
 from .deploy import MARGIN
 
 #: Budget of the refinement, in simulations of the record.
@@ -40,10 +41,17 @@ def simulation_residual(
 
 
 def refine(
-    model: ModelFile, x: FloatArray, a: FloatArray, dt: float, force: FloatArray, rows: BoolArray
+    model: ModelFile,
+    x: FloatArray,
+    a: FloatArray,
+    dt: float,
+    force: FloatArray,
+    rows: BoolArray,
+    report: Progress | None = None,
 ) -> tuple[ModelFile, float, float]:
     """The refined model file (module documentation), and the simulation rms before and after,
-    on ``rows`` (a boolean mask)."""
+    on ``rows`` (a boolean mask); ``report`` counts the simulations (stage ``refinement``)."""
+    simulations = 0
     pack, unpack = _coordinates(model)
     start = pack()
     lower = np.array([bound for bound, _ in _bounds(model)])
@@ -53,6 +61,10 @@ def refine(
     worst = 10.0 * float(np.sqrt(np.mean(force[mask] ** 2))) + 1.0
 
     def residual(theta: FloatArray) -> FloatArray:
+        nonlocal simulations
+        if report is not None:  # the budget counts evaluations, not the Jacobians' simulations
+            report.stage("refinement", simulations, None, "simulations")
+        simulations += 1
         try:
             candidate = unpack(theta)
         except ParameterError:  # outside the model's rules (a level factor reaching 0)

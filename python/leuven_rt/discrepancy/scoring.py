@@ -50,7 +50,10 @@ def blocks(features: Features, folds: int) -> list[NDArray[np.bool_]]:
         raise InputError(
             "data too short to split for validation: "
             f"need at least {folds * MIN_FOLD_SAMPLES} usable samples ({folds} blocks of {MIN_FOLD_SAMPLES}) "
-            f"after the filter edges, got {index.size}"
+            f"after the filter edges, got {index.size}",
+            kind="too_few",
+            value=int(index.size),
+            bound=folds * MIN_FOLD_SAMPLES,
         )
     masks = []
     for part in np.array_split(index, folds):

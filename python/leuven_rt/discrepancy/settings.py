@@ -9,7 +9,7 @@ import numbers
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from ..errors import InputError
+from ..errors import InputError, shown
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -37,7 +37,14 @@ class Settings:
         for name, low in (("folds", 2), ("chunks", 2)):
             value: Any = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
-                raise InputError(f"`settings.{name}` must be an integer >= {low}, got {value!r:.80}")
+                integer = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+                raise InputError(
+                    f"`settings.{name}` must be an integer >= {low}, got {shown(value)!r:.80}",
+                    kind="out_of_range" if integer else "not_integer",
+                    field=f"settings.{name}",
+                    value=value,
+                    bound=low if integer else None,
+                )
         for name in ("significance", "loss", "joint", "drift", "unexplained"):
             value = getattr(self, name)
             if (
@@ -45,7 +52,13 @@ class Settings:
                 or not isinstance(value, numbers.Real)
                 or not 0.0 <= float(value) < float("inf")
             ):
-                raise InputError(f"`settings.{name}` must be a finite number >= 0, got {value!r:.80}")
+                real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+                raise InputError(
+                    f"`settings.{name}` must be a finite number >= 0, got {shown(value)!r:.80}",
+                    kind="negative" if real else "not_real",
+                    field=f"settings.{name}",
+                    value=value,
+                )
 
     def to_dict(self) -> dict[str, float]:
         return asdict(self)

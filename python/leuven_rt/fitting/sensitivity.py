@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _core
 from .._checks import as_signal, as_step, check_scheme
 from .._typing import FloatArray, Scheme
-from ..errors import InputError, ParameterError
+from ..errors import InputError, ParameterError, data_of, shown
 from ..params import ParamsLike, core_params
 
 #: What the samples of a signal are: velocities, or positions (v = (xₖ − xₖ₋₁)/dt, v = 0 first).
@@ -48,14 +48,26 @@ class Sensitivities(NamedTuple):
 def _as_input_kind(input: Any) -> bool:
     """Whether the signal is positions."""
     if input not in INPUT_KINDS:
-        raise InputError(f"`input` must be 'velocity' or 'position', got {input!r}")
+        raise InputError(
+            f"`input` must be 'velocity' or 'position', got {shown(input)!r}",
+            kind="invalid_choice",
+            field="input",
+            value=input,
+            expected=INPUT_KINDS,
+        )
     return bool(input == "position")
 
 
 def _as_one_signal(signal: ArrayLike) -> FloatArray:
     array, one_dimensional = as_signal(signal, "signal")
     if not one_dimensional:
-        raise InputError(f"`signal` must have shape (T,), got shape {np.shape(signal)}")
+        raise InputError(
+            f"`signal` must have shape (T,), got shape {np.shape(signal)}",
+            kind="shape",
+            field="signal",
+            expected="(T,)",
+            got=np.shape(signal),
+        )
     row: FloatArray = array[0]
     return row
 
@@ -66,17 +78,33 @@ def _as_rows(rows: ArrayLike | None, samples: int) -> NDArray[np.int64] | NDArra
     if rows is None:
         return np.arange(samples, dtype=np.int64)
     if isinstance(rows, (str, bytes, bytearray)):
-        raise InputError(f"`rows` must be integer sample indices, got {type(rows).__name__}")
+        raise InputError(
+            f"`rows` must be integer sample indices, got {type(rows).__name__}",
+            kind="not_integer",
+            field="rows",
+            value=rows,
+        )
     array = np.asarray(rows)
     if array.ndim != 1:
-        raise InputError(f"`rows` must have shape (R,), got shape {array.shape}")
+        raise InputError(
+            f"`rows` must have shape (R,), got shape {array.shape}",
+            kind="shape",
+            field="rows",
+            expected="(R,)",
+            got=array.shape,
+        )
     if array.size == 0:
         return np.zeros(0, dtype=np.int64)
     if array.dtype.kind == "i":
         return np.ascontiguousarray(array, dtype=np.int64)
     if array.dtype.kind == "u":
         return np.ascontiguousarray(array, dtype=np.uint64)
-    raise InputError(f"`rows` must be integer sample indices, got dtype {array.dtype}")
+    raise InputError(
+        f"`rows` must be integer sample indices, got dtype {array.dtype}",
+        kind="not_integer",
+        field="rows",
+        value=str(array.dtype),
+    )
 
 
 def sensitivities(
@@ -126,13 +154,21 @@ def simulate_sets(
     """
     given: Any = params  # typed as a sequence; checked as what it really is
     if isinstance(given, (str, bytes, bytearray)) or not isinstance(given, Sequence):
-        raise ParameterError(f"`params` must be a sequence of parameter sets, got {type(given).__name__}")
+        raise ParameterError(
+            f"`params` must be a sequence of parameter sets, got {type(given).__name__}",
+            kind="wrong_type",
+            field="params",
+        )
     validated = []
     for index, item in enumerate(given):
         try:
             validated.append(core_params(item))
         except ParameterError as error:
-            raise ParameterError(f"params[{index}]: {error}") from None
+            # The set's own data (the parameter at fault), under a message naming the set, which
+            # `channel` gives as a refused run of one set does.
+            raise ParameterError(
+                f"params[{index}]: {error}", **{**data_of(error), "channel": index}
+            ) from None
     position = _as_input_kind(input)
     checked_scheme = check_scheme(scheme)
     values = _as_one_signal(signal)

@@ -21,7 +21,7 @@ from .._typing import FloatArray
 from ..data.records import MotionData
 from ..data.regression import LinearFit, fit_linear
 from ..data.signals import Derivatives, decimate, estimate_derivatives
-from ..errors import DataError
+from ..errors import DataError, shown
 
 #: Regressor columns of the inverse model, by the name of their coefficient.
 REGRESSORS: dict[str, Callable[[Derivatives], FloatArray]] = {
@@ -55,9 +55,23 @@ def fit_inverse_model(
     """
     unknown = [name for name in parameters if name not in REGRESSORS]
     if unknown or not parameters:
-        raise DataError(f"`parameters` must be names among {sorted(REGRESSORS)}, got {list(parameters)}")
+        raise DataError(
+            f"`parameters` must be names among {sorted(REGRESSORS)}, got {list(parameters)}",
+            kind="invalid_choice",
+            field="parameters",
+            value=unknown[0] if unknown else None,
+            expected=sorted(REGRESSORS),
+            got=list(parameters),
+        )
     if isinstance(decimation, bool) or not isinstance(decimation, int) or decimation < 1:
-        raise DataError(f"`decimation` must be an integer >= 1, got {decimation!r}")
+        integer = isinstance(decimation, int) and not isinstance(decimation, bool)
+        raise DataError(
+            f"`decimation` must be an integer >= 1, got {shown(decimation)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="decimation",
+            value=decimation,
+            bound=1 if integer else None,
+        )
     edge = 5.0 / cutoff if edge is None else float(edge)
     derivatives = estimate_derivatives(data, cutoff, order)
     drop = math.ceil(edge / (data.dt * decimation))
@@ -65,7 +79,10 @@ def fit_inverse_model(
     if y.size - 2 * drop < 4 * len(parameters):
         raise DataError(
             f"too few samples for the inverse model: {data.samples} samples leave {y.size - 2 * drop} "
-            f"after decimation by {decimation} and dropping {edge:g} s at each end"
+            f"after decimation by {decimation} and dropping {edge:g} s at each end",
+            kind="too_few",
+            value=y.size - 2 * drop,
+            bound=4 * len(parameters),
         )
     keep = slice(drop, y.size - drop)
     columns = {name: decimate(REGRESSORS[name](derivatives), decimation)[keep] for name in parameters}

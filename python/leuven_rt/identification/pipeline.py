@@ -19,16 +19,15 @@ import time
 from typing import Any, cast
 
 import numpy as np
-from tqdm import tqdm
 
 from .._checks import real_number
 from .._core import MAX_ELEMENTS
-from .._extras import progress_wanted
 from .._typing import BoolArray
 from ..data.records import DataLike, as_motion_data
 from ..data.segments import Segments, find_segments, transition_lengths
 from ..data.signals import Derivatives, estimate_derivatives, noise_floor
-from ..errors import DataError, InputError
+from ..errors import DataError, InputError, shown
+from ..progress import Progress, reporting
 from ..simulation import simulate_position
 from .presliding import CANDIDATE_ELEMENTS, fit_presliding
 from .refine import WEIGHT_MARGIN, SimulationError, fit_transition, model_params, refine_jointly
@@ -49,26 +48,52 @@ def _check_options(elements: Any, held_out: Any, max_evaluations: Any, cutoff: A
     if cutoff is not None:
         real_number(cutoff, "cutoff")  # its range is the filter's to check, against the data's rate
     if not isinstance(asymmetric, (bool, np.bool_)):
-        raise InputError(f"`asymmetric` must be True or False, got {asymmetric!r:.80}")
+        raise InputError(
+            f"`asymmetric` must be True or False, got {shown(asymmetric)!r:.80}",
+            kind="wrong_type",
+            field="asymmetric",
+            value=asymmetric,
+        )
     if elements is not None and (
         isinstance(elements, bool)
         or not isinstance(elements, numbers.Integral)
         or not 1 <= int(elements) <= MAX_ELEMENTS  # int() is exact for any Integral
     ):
-        raise InputError(f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {elements!r}")
+        integer = isinstance(elements, numbers.Integral) and not isinstance(elements, bool)
+        raise InputError(
+            f"`elements` must be None or an integer in [1, {MAX_ELEMENTS}], got {shown(elements)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="elements",
+            value=elements,
+            bound=(1 if int(elements) < 1 else MAX_ELEMENTS) if integer else None,
+        )
     # numbers.Real declares no typed comparisons: compared as a float for the checker only.
     if (
         isinstance(held_out, bool)
         or not isinstance(held_out, numbers.Real)
         or not 0.0 <= cast(float, held_out) <= 0.5
     ):
-        raise InputError(f"`held_out` must be a fraction in [0, 0.5], got {held_out!r}")
+        real = isinstance(held_out, numbers.Real) and not isinstance(held_out, bool)
+        raise InputError(
+            f"`held_out` must be a fraction in [0, 0.5], got {shown(held_out)!r}",
+            kind="out_of_range" if real else "not_real",
+            field="held_out",
+            value=held_out,
+            bound=(0.0 if cast(float, held_out) < 0.0 else 0.5) if real else None,
+        )
     if (
         isinstance(max_evaluations, bool)
         or not isinstance(max_evaluations, numbers.Integral)
         or max_evaluations < 3
     ):
-        raise InputError(f"`max_evaluations` must be an integer >= 3, got {max_evaluations!r}")
+        integer = isinstance(max_evaluations, numbers.Integral) and not isinstance(max_evaluations, bool)
+        raise InputError(
+            f"`max_evaluations` must be an integer >= 3, got {shown(max_evaluations)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="max_evaluations",
+            value=max_evaluations,
+            bound=3 if integer else None,
+        )
 
 
 def _presliding_range(segments: Segments, force: np.ndarray, noise: float, warnings: list[str]) -> float:
@@ -80,7 +105,9 @@ def _presliding_range(segments: Segments, force: np.ndarray, noise: float, warni
     if not lengths.size:
         raise DataError(
             "the presliding range cannot be estimated: after no reversal (nor after the start) does the "
-            "force settle on a sliding level; the data must include moves long enough to slide"
+            "force settle on a sliding level; the data must include moves long enough to slide",
+            kind="not_identifiable",
+            field="f",
         )
     warnings.append("presliding range estimated from the initial loading from rest only")
     # From rest the force rises by g, not 2g: the transition covers about half the range.
@@ -95,7 +122,7 @@ def identify_staged(
     cutoff: float | None = None,
     held_out: float = 0.25,
     max_evaluations: int = 30,
-    progress: bool = False,
+    progress: bool | Progress = False,
 ) -> IdentificationResult:
     """Fits the modified Leuven model to a log of position and force.
 
@@ -105,8 +132,8 @@ def identify_staged(
     ``asymmetric``: fit ``Fc_neg``, ``Fs_neg`` too. ``cutoff``: the position filter's cutoff [Hz]
     (default a tenth of the Nyquist frequency). ``held_out``: the share of the record, at its end,
     kept for scoring. ``max_evaluations``: the budget of each simulation-error stage (least-squares
-    function evaluations, Jacobians not counted). ``progress``: a progress bar on stderr for fits
-    that take more than a second.
+    function evaluations, Jacobians not counted). ``progress``: report the stages on stderr (True:
+    a bar on a terminal, lines otherwise; or a :class:`~leuven_rt.progress.Progress`).
 
     Returns the parameters and an :class:`IdentificationReport`. Bad data raises
     :class:`DataError` (an :class:`InputError`).
@@ -116,7 +143,7 @@ def identify_staged(
     record = as_motion_data(data)
     split = round(record.samples * (1.0 - held_out))
     training = record.slice(0, split)
-    derivatives = estimate_derivatives(training, None if cutoff is None else real_number(cutoff, "cutoff"))
+    derivatives = estimate_derivatives(training, cutoff)
     noise = noise_floor(training.f)
     warnings: list[str] = []
     stages: list[Stage] = []
@@ -147,15 +174,17 @@ def identify_staged(
 
     sigma1 = max(presliding.viscous - sliding.sigma2, 0.0)
     start = model_params({**sliding.params(), "n": 2.0, "sigma1": sigma1}, presliding.W, presliding.Delta)
-    shown = progress_wanted(progress)
-    with tqdm(desc="identify", unit=" simulations", delay=1.0, disable=not shown, leave=False) as bar:
-        objective = SimulationError(derivatives.x, training.dt, training.f, np.ones(split, dtype=bool),
-                                    lambda: bar.update(1))  # fmt: skip
-        bar.set_postfix_str("sigma1, n")
+    with reporting(progress, "identify_staged") as reporter:
+        stage = ["transition"]  # the stage the simulations count towards
+
+        def tick() -> None:
+            reporter.stage(stage[0], objective.evaluations, None, "simulations")
+
+        objective = SimulationError(derivatives.x, training.dt, training.f, np.ones(split, dtype=bool), tick)
         transition = fit_transition(start, objective, max_evaluations)
         stages.append(Stage("transition", transition.rms, split, transition.condition,
                             {"sigma1": transition.params.sigma1, "n": transition.params.n}))  # fmt: skip
-        bar.set_postfix_str("all parameters")
+        stage[0] = "joint"
         joint = refine_jointly(transition.params, objective, max_evaluations)
         stages.append(Stage("joint", joint.rms, split, joint.condition,
                             {"simulations": objective.evaluations}))  # fmt: skip

@@ -76,7 +76,10 @@ def fit_presliding(
     if np.count_nonzero(fit_rows) < MIN_PRESLIDING_SAMPLES:
         raise DataError(
             f"too few presliding samples: need at least {MIN_PRESLIDING_SAMPLES} samples within the "
-            f"presliding range after a reversal or the start, got {np.count_nonzero(fit_rows)}"
+            f"presliding range after a reversal or the start, got {np.count_nonzero(fit_rows)}",
+            kind="too_few",
+            value=int(np.count_nonzero(fit_rows)),
+            bound=MIN_PRESLIDING_SAMPLES,
         )
     candidates = (elements,) if isinstance(elements, int) else tuple(elements or CANDIDATE_ELEMENTS)
     errors: dict[int, float] = {}
@@ -102,8 +105,12 @@ def fit_presliding(
     fit = fit_linear(_regressors(phi, v, rows), force[rows], nonnegative=True)
     W = np.array([fit.coefficients[f"W{i}"] for i in range(chosen)])
     if not (W > 0.0).any():
-        raise DataError("the presliding fit gave no element a positive weight: the force does not "
-                        "rise with the displacement after reversals")  # fmt: skip
+        raise DataError(
+            "the presliding fit gave no element a positive weight: the force does not rise with the "
+            "displacement after reversals",
+            kind="not_identifiable",
+            field="W",
+        )
     # The model needs every W > 0, and the joint refinement can still use an element that the
     # z ≈ x regression left idle: start idle ones at a small share of the mean weight.
     W = np.maximum(W, IDLE_SHARE * float(np.mean(W)))

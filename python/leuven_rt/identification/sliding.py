@@ -87,14 +87,21 @@ def fit_sliding(v: FloatArray, force: FloatArray, asymmetric: bool = False) -> S
     if v.size < MIN_SLIDING_SAMPLES:
         raise DataError(
             f"too few sliding samples: need at least {MIN_SLIDING_SAMPLES} samples well past the "
-            f"presliding transition, got {v.size}; the data must include sliding at steady speed"
+            f"presliding transition, got {v.size}; the data must include sliding at steady speed",
+            kind="too_few",
+            value=int(v.size),
+            bound=MIN_SLIDING_SAMPLES,
         )
     speed = np.abs(v)
     if asymmetric and (
         np.count_nonzero(v > 0) < MIN_SLIDING_SAMPLES // 2
         or np.count_nonzero(v < 0) < MIN_SLIDING_SAMPLES // 2
     ):
-        raise DataError("`asymmetric` needs sliding in both directions, but the data slides in one only")
+        raise DataError(
+            "`asymmetric` needs sliding in both directions, but the data slides in one only",
+            kind="not_identifiable",
+            field="asymmetric",
+        )
     # A straight line through the fast half gives Fc and σ2 to start from.
     fast = speed >= np.median(speed)
     slope, level = np.polyfit(speed[fast], np.sign(v[fast]) * force[fast], 1)

@@ -225,7 +225,9 @@ def step(
     if not (math.isfinite(z_next) and math.isfinite(force)):
         raise DivergenceError(
             f"the explicit step diverged at sample {sample}: dt is too large for the stiffness; "
-            "use the implicit scheme"
+            "use the implicit scheme",
+            kind="diverged",
+            sample=sample,
         )
     hysteresis.commit(zeta, z_next)
     return z_next, force
@@ -281,8 +283,16 @@ def simulate_position(
         v = np.diff(array, axis=1, prepend=array[:, :1]) / dt
     bad = ~np.isfinite(v)
     if bad.any():
-        channel, sample = np.unravel_index(int(np.argmax(bad)), v.shape)
-        raise InputError(f"`v` must be finite, got {v[channel, sample]} at sample {sample}")
+        channel, sample = (int(index) for index in np.unravel_index(int(np.argmax(bad)), v.shape))
+        value = float(v[channel, sample])
+        raise InputError(
+            f"`v` must be finite, got {value} at sample {sample}",
+            kind="not_finite",
+            field="v",
+            value=value,
+            sample=sample,
+            channel=None if one_dimensional else channel,
+        )
     out = np.stack([_run_channel(params, row, dt, scheme) for row in v])
     if level is not None:
         viscous = params.sigma2 * v

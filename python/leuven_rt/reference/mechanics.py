@@ -76,7 +76,9 @@ def implicit_mass_step(
 
     r0 = residual(z)
     if not math.isfinite(r0):
-        raise DivergenceError("the implicit mass step overflowed: the inputs are beyond f64 range")
+        raise DivergenceError(
+            "the implicit mass step overflowed: the inputs are beyond f64 range", kind="overflow"
+        )
     if r0 == 0.0:
         return z, velocity(z)
     near, step_size = z, -r0
@@ -93,7 +95,9 @@ def implicit_mass_step(
             y = float(brentq(residual, lo, hi, xtol=xtol, rtol=RTOL, maxiter=500))
             return y, velocity(y)
         near, step_size = far, 2.0 * step_size
-    raise DivergenceError("the implicit mass step found no sign change: the inputs are beyond f64 range")
+    raise DivergenceError(
+        "the implicit mass step found no sign change: the inputs are beyond f64 range", kind="overflow"
+    )
 
 
 def _run_channel(
@@ -131,7 +135,9 @@ def _run_channel(
             v_next = v + dt * (uk + k * (anchor - x) - force) / m
             x, v = x + dt * v, v_next
         if not (math.isfinite(force) and math.isfinite(x) and math.isfinite(v)):
-            raise DivergenceError(f"the {scheme} mass step diverged at sample {index}")
+            raise DivergenceError(
+                f"the {scheme} mass step diverged at sample {index}", kind="diverged", sample=index
+            )
         anchor = anchor_next
         friction[index], xs[index], vs[index] = force, x, v
     return friction, xs, vs

@@ -22,7 +22,14 @@ def regressors(Delta: ArrayLike, x: ArrayLike, v: ArrayLike) -> FloatArray:
     """
     delta = np.asarray(as_real_list("Delta", Delta), dtype=np.float64)
     if delta.size == 0 or not (np.isfinite(delta).all() and (delta > 0).all()):
-        raise ParameterError(f"`Delta` must be at least one finite value > 0, got {delta.tolist()}")
+        bad = [index for index, value in enumerate(delta.tolist()) if not (np.isfinite(value) and value > 0)]
+        raise ParameterError(
+            f"`Delta` must be at least one finite value > 0, got {delta.tolist()}",
+            kind="deflection_count" if delta.size == 0 else "element",
+            field="Delta" if delta.size == 0 else f"Delta[{bad[0]}]",
+            value=0 if delta.size == 0 else float(delta[bad[0]]),
+            index=None if delta.size == 0 else bad[0],
+        )
     xs, vs = as_log(x, v, None)
     require_finite(xs, "x", True)
     require_finite(vs, "v", True)

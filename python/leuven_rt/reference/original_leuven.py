@@ -43,7 +43,7 @@ from scipy.optimize import brentq
 
 from .._checks import as_signal, check_dt, require_finite
 from .._typing import FloatArray
-from ..errors import InputError, ParameterError, StackOverflowError
+from ..errors import InputError, ParameterError, StackOverflowError, shown
 from ..params import ParamsLike, as_params
 from .leuven import phi, stribeck_level
 from .mechanics import implicit_mass_step
@@ -82,7 +82,12 @@ class TanhCurve:
             value = getattr(self, name)
             # numbers.Real declares no typed comparisons: compared as a float for the checker only.
             if not (isinstance(value, numbers.Real) and math.isfinite(value) and cast(float, value) > 0):
-                raise ParameterError(f"`{name}` must be finite and > 0, got {value!r}")
+                raise ParameterError(
+                    f"`{name}` must be finite and > 0, got {shown(value)!r}",
+                    kind="not_positive",
+                    field=name,
+                    value=value,
+                )
 
     @property
     def limit(self) -> float:
@@ -115,10 +120,14 @@ class MasingMaxwell:
         self.Delta = np.asarray(Delta, dtype=np.float64)
         if self.W.shape != self.Delta.shape or self.W.ndim != 1 or self.W.size == 0:
             raise ParameterError(
-                f"`W` and `Delta` must be 1-D of the same length, got {self.W.shape} and {self.Delta.shape}"
+                f"`W` and `Delta` must be 1-D of the same length, got {self.W.shape} and {self.Delta.shape}",
+                kind="shape",
+                field="Delta",
+                expected=self.W.shape,
+                got=self.Delta.shape,
             )
         if not (np.all(self.W > 0) and np.all(self.Delta > 0) and np.all(np.isfinite(self.W * self.Delta))):
-            raise ParameterError("`W` and `Delta` must be finite and > 0")
+            raise ParameterError("`W` and `Delta` must be finite and > 0", kind="element", field="W")
         # Fd is piecewise linear with knots at ±2Δᵢ: tabulate it for the inverse.
         knots = np.unique(np.concatenate(([0.0], 2.0 * self.Delta)))
         self._knots = np.concatenate((-knots[::-1], knots[1:]))
@@ -250,7 +259,14 @@ class StackHysteresis:
 
 def _depth(depth: Any) -> int:
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral) or depth < 1:
-        raise ParameterError(f"`depth` (stack depth) must be an integer >= 1, got {depth!r}")
+        integer = isinstance(depth, numbers.Integral) and not isinstance(depth, bool)
+        raise ParameterError(
+            f"`depth` (stack depth) must be an integer >= 1, got {shown(depth)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="depth",
+            value=depth,
+            bound=1 if integer else None,
+        )
     return int(depth)
 
 
@@ -272,7 +288,11 @@ class OriginalLeuven:
         self.params = as_params(params)
         if curve is None:
             if self.params.W is None or self.params.Delta is None:
-                raise ParameterError("give a `curve`, or params with Maxwell-slip `W` and `Delta`")
+                raise ParameterError(
+                    "give a `curve`, or params with Maxwell-slip `W` and `Delta`",
+                    kind="missing_key",
+                    field="curve",
+                )
             curve = MasingMaxwell(self.params.W, self.params.Delta)
         self.hysteresis = StackHysteresis(curve, depth)
 
@@ -376,9 +396,19 @@ class OriginalLeuvenMass:
         for name, value, low in (("mass", mass, "> 0"), ("stiffness", stiffness, ">= 0")):
             ok = math.isfinite(value) and (value > 0 if low == "> 0" else value >= 0)
             if not ok:
-                raise ParameterError(f"`{name}` must be finite and {low}, got {value}")
+                raise ParameterError(
+                    f"`{name}` must be finite and {low}, got {value}",
+                    kind="not_positive" if low == "> 0" else "negative",
+                    field=name,
+                    value=value,
+                )
         if not math.isfinite(drive_speed):
-            raise ParameterError(f"`drive_speed` must be finite, got {drive_speed}")
+            raise ParameterError(
+                f"`drive_speed` must be finite, got {drive_speed}",
+                kind="not_finite_value",
+                field="drive_speed",
+                value=drive_speed,
+            )
         self.model = model
         self.mass, self.stiffness, self.drive_speed = float(mass), float(stiffness), float(drive_speed)
         self.x, self.v, self.anchor = float(position), float(velocity), 0.0
@@ -386,7 +416,7 @@ class OriginalLeuvenMass:
     def step(self, u: float, dt: float) -> OriginalSample:
         """One implicit step with applied force ``u``; returns the friction sample."""
         if not math.isfinite(u):
-            raise InputError(f"`u` must be finite, got {u}")
+            raise InputError(f"`u` must be finite, got {u}", kind="not_finite", field="u", value=u, sample=0)
         dt = check_dt(dt)
         model, p = self.model, self.model.params
         m, k = self.mass, self.stiffness
@@ -435,6 +465,12 @@ def run_velocity(model: OriginalLeuven, v: ArrayLike, dt: float) -> FloatArray:
     """Friction force of ``model`` for the velocity signal ``v`` (T,)."""
     array, one_dimensional = as_signal(v, "v")
     if not one_dimensional:
-        raise InputError(f"`v` must have shape (T,), got shape {np.shape(v)}")
+        raise InputError(
+            f"`v` must have shape (T,), got shape {np.shape(v)}",
+            kind="shape",
+            field="v",
+            expected="(T,)",
+            got=np.shape(v),
+        )
     require_finite(array, "v", one_dimensional)
     return np.array([model.step(value, dt).friction for value in array[0].tolist()])

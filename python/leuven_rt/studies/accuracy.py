@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._typing import FloatArray, Scheme
-from ..errors import DivergenceError
+from ..errors import DivergenceError, InputError, shown
 from ..mechanics import simulate_mass
 from ..params import Params
 from ..simulation import simulate
@@ -78,9 +78,12 @@ def velocity(times: FloatArray, amplitude: float = AMPLITUDE) -> FloatArray:
 def _samples(rate: float, duration: float) -> int:
     count = round(rate * duration)
     if count < 1 or not math.isclose(count, rate * duration, rel_tol=1e-9):
-        raise ValueError(
+        raise InputError(
             f"`duration` must hold a whole number (>= 1) of samples at {rate} Hz, "
-            f"got {duration} s = {rate * duration} samples"
+            f"got {duration} s = {rate * duration} samples",
+            kind="not_integer",
+            field="duration",
+            value=duration,
         )
     return count
 
@@ -122,7 +125,14 @@ def step_accuracy(
     scheme that raises :class:`DivergenceError` gets a row with infinite errors instead of failing the table.
     """
     if isinstance(refine, bool) or not isinstance(refine, int) or refine < 2:
-        raise ValueError(f"`refine` must be an integer >= 2, got {refine!r}")
+        integer = isinstance(refine, int) and not isinstance(refine, bool)
+        raise InputError(
+            f"`refine` must be an integer >= 2, got {shown(refine)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="refine",
+            value=refine,
+            bound=2 if integer else None,
+        )
     rows: list[AccuracyRow] = []
     for rate in rates:
         rate = float(rate)
@@ -253,7 +263,14 @@ def force_accuracy(
     against the implicit mass step at ``refine``× the rate, compared at the end of every coarse
     step. Same conventions as :func:`step_accuracy`."""
     if isinstance(refine, bool) or not isinstance(refine, int) or refine < 2:
-        raise ValueError(f"`refine` must be an integer >= 2, got {refine!r}")
+        integer = isinstance(refine, int) and not isinstance(refine, bool)
+        raise InputError(
+            f"`refine` must be an integer >= 2, got {shown(refine)!r}",
+            kind="out_of_range" if integer else "not_integer",
+            field="refine",
+            value=refine,
+            bound=2 if integer else None,
+        )
     rows: list[MassAccuracyRow] = []
     for rate in rates:
         rate = float(rate)

@@ -32,7 +32,7 @@ import numpy as np
 from .._plot import figure, save
 from .._typing import FloatArray
 from ..compensation import Compensator
-from ..errors import InputError
+from ..errors import InputError, shown
 from ..mechanics import MassSystem
 from ..params import Params
 
@@ -86,13 +86,27 @@ class Scenario:
                      "derivative_filter", "glitch_window", "encoder_resolution"):  # fmt: skip
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-                raise InputError(f"`{name}` must be a finite number > 0, got {value!r}")
+                raise InputError(
+                    f"`{name}` must be a finite number > 0, got {shown(value)!r}",
+                    kind="not_positive",
+                    field=name,
+                    value=value,
+                )
         if not (np.isfinite(self.noise) and self.noise >= 0):
-            raise InputError(f"`noise` must be finite and >= 0, got {self.noise!r}")
+            raise InputError(
+                f"`noise` must be finite and >= 0, got {shown(self.noise)!r}",
+                kind="negative",
+                field="noise",
+                value=self.noise,
+            )
         ratio = self.plant_rate / self.rate
         if abs(ratio - round(ratio)) > 1e-9 or round(ratio) < 1:
             raise InputError(
-                f"`plant_rate` must be a multiple of `rate`, got {self.plant_rate} and {self.rate}"
+                f"`plant_rate` must be a multiple of `rate`, got {self.plant_rate} and {self.rate}",
+                kind="not_integer",
+                field="plant_rate",
+                value=self.plant_rate,
+                bound=self.rate,
             )
 
 
@@ -155,7 +169,13 @@ def gains(scenario: Scenario) -> tuple[float, float, float]:
 def simulate(scenario: Scenario, compensation: str) -> Run:
     """One closed-loop run with the given compensation (one of :data:`COMPENSATIONS`)."""
     if compensation not in COMPENSATIONS:
-        raise InputError(f"`compensation` must be one of {COMPENSATIONS}, got {compensation!r}")
+        raise InputError(
+            f"`compensation` must be one of {COMPENSATIONS}, got {shown(compensation)!r}",
+            kind="invalid_choice",
+            field="compensation",
+            value=compensation,
+            expected=COMPENSATIONS,
+        )
     dt = 1.0 / scenario.rate
     substeps = round(scenario.plant_rate / scenario.rate)
     plant_dt = dt / substeps
