@@ -1,5 +1,6 @@
 """Type stubs of the Rust extension (crates/gms-py)."""
 
+from collections.abc import Sequence
 from typing import Any, Literal, Protocol, final
 
 import numpy as np
@@ -25,6 +26,8 @@ __all__ = [
     "ParameterError",
     "__version__",
     "check_params",
+    "sensitivities",
+    "simulate_sets",
     "slip_responses",
 ]
 
@@ -159,6 +162,21 @@ class CorePositionForce:
 
 def check_params(params: _ParamsLike | CoreParams) -> None: ...
 def slip_responses(x: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]: ...
+def sensitivities(
+    params: _ParamsLike | CoreParams,
+    signal: NDArray[np.float64],
+    dt: float,
+    position: bool,
+    scheme: _Scheme,
+    rows: NDArray[np.int64] | NDArray[np.uint64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], list[str]]: ...
+def simulate_sets(
+    params: Sequence[_ParamsLike | CoreParams],
+    signal: NDArray[np.float64],
+    dt: float,
+    position: bool,
+    scheme: _Scheme,
+) -> NDArray[np.float64]: ...
 
 @disjoint_base
 class Engine:

@@ -72,7 +72,6 @@ PYTHON_KINDS = frozenset(
         # measured data
         "missing_column",
         "too_few",
-        "not_increasing",
         "not_uniform",
         "gap",
         "implausible_units",

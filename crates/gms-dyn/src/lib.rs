@@ -13,6 +13,8 @@
 //! - [`OnlineIdentifier`] and [`slip_responses`]: identification with N chosen at run time.
 //! - [`Error`]: gms-core's rules plus the refusals of this layer, each displayed as the whole
 //!   message the user reads, with its data ([`Error::details`]: kind, field, value) beside it.
+//! - [`with_params!`]: code generic over the hysteresis, run on whichever gms-core parameters a
+//!   [`ParameterSet`] holds (the crates built on this one, gms-fit, dispatch through it).
 //!
 //! The bindings on top only convert arguments and map [`Error`]s to exception classes or
 //! status codes.
@@ -38,6 +40,10 @@ pub use mass::{MassBank, MassStates, Mechanics};
 pub use online::OnlineIdentifier;
 pub use params::{ParameterSet, RawElements, RawParams};
 pub use slip::slip_responses;
+
+/// The `seq!` macro that [`with_params!`] expands to, reachable from the crates that call it.
+#[doc(hidden)]
+pub use seq_macro::seq as __seq;
 
 /// The largest number of Maxwell-slip elements a run-time parameter set may have.
 ///

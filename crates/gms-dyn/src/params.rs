@@ -18,9 +18,14 @@ const _: () = assert!(MAX_ELEMENTS == 32);
 
 /// Runs `$body` with `$params` bound to the gms-core parameters inside the [`ParameterSet`]
 /// `$set`, whatever its variant (each arm is compiled for its own hysteresis type).
+///
+/// Exported so that a crate built on this one (gms-fit) dispatches over the same table rather
+/// than spelling out a second one: `gms_dyn::with_params!(set, params => run(params))`, with
+/// `run` generic over the hysteresis.
+#[macro_export]
 macro_rules! with_params {
     ($set:expr, $params:ident => $body:expr) => {
-        seq_macro::seq!(N in 1..=32 {
+        $crate::__seq!(N in 1..=32 {
             match $set {
                 $crate::ParameterSet::Linear($params) => $body,
                 #( $crate::ParameterSet::Maxwell~N($params) => $body, )*
@@ -28,7 +33,7 @@ macro_rules! with_params {
         })
     };
 }
-pub(crate) use with_params;
+pub(crate) use crate::with_params;
 
 /// Evaluates `$body` with the const `$n` equal to `$count` when it is in 1..=[`MAX_ELEMENTS`],
 /// and `$otherwise` when not.

@@ -200,10 +200,11 @@ pub enum Kind {
     ConcurrentUse,
 }
 
-/// Every kind the extension raises: gms-core's, gms-dyn's and this layer's own.
+/// Every kind the extension raises: gms-core's, gms-dyn's, gms-fit's and this layer's own.
 pub fn kinds() -> Vec<&'static str> {
     use strum::VariantNames;
     let mut kinds: Vec<&'static str> = Error::kinds()
+        .chain(gms_fit::Error::KINDS)
         .chain(Kind::VARIANTS.iter().copied())
         .collect();
     kinds.sort_unstable();
@@ -304,6 +305,11 @@ impl Refusal {
         self.datum("bound", bound.into())
     }
 
+    /// The index of the element or entry at fault, the last index that `field` spells.
+    pub fn index(self, index: usize) -> Self {
+        self.datum("index", index.into())
+    }
+
     /// The length, count or shape expected, and what came.
     pub fn lengths(self, expected: impl Into<Datum>, got: impl Into<Datum>) -> Self {
         self.datum("expected", expected.into())
@@ -338,7 +344,11 @@ impl From<Refusal> for PyErr {
 
 /// gms-dyn's error as an exception of `class`, with `message` and the error's data.
 pub fn raise_as(class: Class, error: Error, message: String) -> PyErr {
-    let details = error.details();
+    raise_details(class, error.details(), message)
+}
+
+/// An exception of `class` with `message` and the data `details`.
+fn raise_details(class: Class, details: Details, message: String) -> PyErr {
     let mut refusal = Refusal::with_kind(class, details.kind, message);
     refusal.field = details.field.map(|field| field.to_string());
     let Details {
@@ -370,14 +380,23 @@ pub fn raise_as(class: Class, error: Error, message: String) -> PyErr {
     refusal.into()
 }
 
-/// The exception of the class the error's kind calls for, with gms-dyn's message and data.
-pub fn raise(error: Error) -> PyErr {
-    let class = match error.class() {
+/// The extension's class for one of gms-dyn's.
+fn class_of(class: ErrorClass) -> Class {
+    match class {
         ErrorClass::Parameter => Class::Parameter,
         ErrorClass::Input => Class::Input,
         ErrorClass::Divergence => Class::Divergence,
-    };
-    raise_as(class, error, error.to_string())
+    }
+}
+
+/// The exception of the class the error's kind calls for, with gms-dyn's message and data.
+pub fn raise(error: Error) -> PyErr {
+    raise_as(class_of(error.class()), error, error.to_string())
+}
+
+/// A gms-fit error, with its message and data, in the class its kind calls for.
+pub fn raise_fit(error: gms_fit::Error) -> PyErr {
+    raise_details(class_of(error.class()), error.details(), error.to_string())
 }
 
 /// A refused update, run or prediction of an online identifier, or refused slip responses:

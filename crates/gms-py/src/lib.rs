@@ -1,4 +1,4 @@
-//! `leuven_rt._core`: the thin `PyO3` layer over gms-dyn and gms-core.
+//! `leuven_rt._core`: the thin `PyO3` layer over gms-dyn, gms-fit and gms-core.
 //!
 //! It reads Python arguments into plain Rust values, hands them to gms-dyn (which validates
 //! them, chooses the number of elements and runs the loops, here with the GIL released), and
@@ -11,6 +11,7 @@
 mod compensator;
 mod convert;
 mod errors;
+mod fit;
 mod level;
 mod mechanics;
 mod model;
@@ -34,6 +35,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::sensitivities, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::simulate_sets, m)?)?;
     m.add_class::<params::CoreParams>()?;
     m.add_class::<level::CoreLevel>()?;
     m.add_class::<level::CorePositionForce>()?;
