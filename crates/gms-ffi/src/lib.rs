@@ -324,7 +324,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
         // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
         // alignment.
         let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        let file = ModelFile::from_slice(text).map_err(Refusal::from_file)?;
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
         from_file(&file, dt, mode, out)
     });
     finish(created, error)
@@ -362,7 +362,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
                 format_args!("the path is not UTF-8"),
             )
         })?);
-        let file = ModelFile::load(path).map_err(Refusal::from_file)?;
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
         from_file(&file, dt, mode, out)
     });
     finish(created, error)
@@ -715,7 +715,7 @@ impl Refusal {
     /// A refused model file or parameter file: a value that breaks a rule of the model gives
     /// the status, field and index of that rule (as the struct's would), anything else
     /// `LEUVEN_RT_INVALID_FILE`; the message names the key path.
-    fn from_file(reason: FileError) -> Self {
+    fn from_file(reason: &FileError) -> Self {
         let (status, field, index) = match reason.rule() {
             Some(rule) => Refusal::sort(rule),
             None => (LEUVEN_RT_INVALID_FILE, c"", 0),
@@ -886,7 +886,9 @@ fn from_file(
     mode: Mode,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
-    let model = file.validate().map_err(Refusal::from_file)?;
+    let model = file
+        .validate()
+        .map_err(|reason| Refusal::from_file(&reason))?;
     let compensator = Compensator::with_level(&model.params, dt, mode, &model.level)
         .map_err(Refusal::from_dyn)?;
     *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));

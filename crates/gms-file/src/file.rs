@@ -119,7 +119,7 @@ pub struct Ripple {
 }
 
 /// A term that depends on the position alone (docs/model.md#position-dependent-level): a trend
-/// along the stroke (Legendre coefficients of p = clip((x − middle)/half_stroke, −1, 1)) and
+/// along the stroke (Legendre coefficients of p = clip((x − `middle`)/`half_stroke`, −1, 1)) and
 /// ripples. As `level`, its amplitudes are relative to the friction level; as `position_force`,
 /// they are forces [N or N·m].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

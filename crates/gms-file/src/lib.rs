@@ -94,12 +94,18 @@ impl ModelFile {
     /// The text of the file, in the current [`VERSION`] (indented JSON, keys in the documented
     /// order, no final newline). The file is validated first, so that nothing is written that
     /// the reader would refuse.
+    ///
+    /// # Panics
+    /// Never: structs of finite numbers, strings and string-keyed maps always serialize.
     pub fn to_json(&self) -> Result<String, FileError> {
         self.validate()?;
         Ok(read::model_to_string(self))
     }
 
     /// The JSON value of [`ModelFile::to_json`]'s text.
+    ///
+    /// # Panics
+    /// Never: structs of finite numbers, strings and string-keyed maps always serialize.
     pub fn to_value(&self) -> Result<Value, FileError> {
         self.validate()?;
         Ok(read::model_to_value(self))
@@ -119,9 +125,22 @@ impl Friction {
 
     /// The text of the parameter file (indented JSON, unset optional keys left out, no final
     /// newline), validated first.
+    ///
+    /// # Panics
+    /// Never: structs of finite numbers, strings and string-keyed maps always serialize.
     pub fn to_json(&self) -> Result<String, FileError> {
         self.validate()?;
         Ok(serde_json::to_string_pretty(self)
+            .expect("structs of numbers and lists of numbers always serialize"))
+    }
+
+    /// The JSON value of [`Friction::to_json`]'s text.
+    ///
+    /// # Panics
+    /// Never: structs of finite numbers, strings and string-keyed maps always serialize.
+    pub fn to_value(&self) -> Result<Value, FileError> {
+        self.validate()?;
+        Ok(serde_json::to_value(self)
             .expect("structs of numbers and lists of numbers always serialize"))
     }
 }

@@ -19,9 +19,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Map, Number, Value};
 
 use crate::error::FileError;
-use crate::file::{
-    Friction, Measurement, ModelFile, PositionTerms, Reconstruction, Report, Units,
-};
+use crate::file::{Friction, Measurement, ModelFile, PositionTerms, Reconstruction, Report, Units};
 use crate::{FORMAT, MAX_FILE_BYTES, VERSION};
 
 /// A version 2 model file's object.
@@ -105,9 +103,7 @@ fn kind(format: Option<&Value>, version: Option<&Value>) -> Result<Kind, FileErr
         return Ok(Kind::Parameters);
     };
     if format.as_str() != Some(FORMAT) {
-        return Err(FileError::Format {
-            got: shown(format),
-        });
+        return Err(FileError::Format { got: shown(format) });
     }
     let Some(version) = version else {
         return Err(FileError::Version { got: None });
@@ -192,7 +188,7 @@ fn track<T: for<'de> Deserialize<'de>>(value: Value) -> Result<T, FileError> {
     })
 }
 
-/// serde_json's error at `path` (`"."` for the root) as a [`FileError`].
+/// `serde_json`'s error at `path` (`"."` for the root) as a [`FileError`].
 fn file_error(path: &str, error: &serde_json::Error) -> FileError {
     use serde_json::error::Category;
     let text = error.to_string();
@@ -205,7 +201,7 @@ fn file_error(path: &str, error: &serde_json::Error) -> FileError {
     let syntax = matches!(error.classify(), Category::Syntax | Category::Eof);
     // A number beyond the f64 range is the value of a key, not a fault of the syntax.
     let out_of_range = message.starts_with("number out of range");
-    if syntax && !(out_of_range && !root) {
+    if syntax && (root || !out_of_range) {
         return FileError::Syntax {
             line: error.line(),
             column: error.column(),
@@ -239,7 +235,11 @@ fn file_error(path: &str, error: &serde_json::Error) -> FileError {
         return FileError::NotAnObject { got: message };
     }
     let message = if error.line() > 0 {
-        format!("{message} (line {}, column {})", error.line(), error.column())
+        format!(
+            "{message} (line {}, column {})",
+            error.line(),
+            error.column()
+        )
     } else {
         message
     };
@@ -282,7 +282,7 @@ fn unexpected(value: &Value) -> de::Unexpected<'_> {
 }
 
 /// A JSON value read as [`Value`] reads it, except that a key given twice in an object is
-/// refused (serde_json's own `Value` keeps the last one silently).
+/// refused (`serde_json`'s own `Value` keeps the last one silently).
 struct StrictValue;
 
 impl<'de> DeserializeSeed<'de> for StrictValue {
@@ -384,7 +384,7 @@ impl<'de> Visitor<'de> for StrictValue {
     }
 }
 
-/// A JSON value read into typed structs as serde_json's own `Value` reads it, except that a
+/// A JSON value read into typed structs as `serde_json`'s own `Value` reads it, except that a
 /// struct must come as an object: serde's derived structs also take an array, field by
 /// position, which the file format does not allow.
 struct Strict(Value);

@@ -185,7 +185,12 @@ fn position_force_adapter(terms: &PositionTerms) -> Result<(), FileError> {
     let largest = terms
         .trend
         .iter()
-        .chain(terms.ripples.iter().flat_map(|r| r.cos.iter().chain(&r.sin)))
+        .chain(
+            terms
+                .ripples
+                .iter()
+                .flat_map(|r| r.cos.iter().chain(&r.sin)),
+        )
         .fold(0.0_f64, |largest, value| largest.max(value.abs()));
     let count = 2 + terms
         .ripples

@@ -13,6 +13,14 @@ create_exception!(
 );
 create_exception!(
     leuven_rt,
+    ModelFileError,
+    ParameterError,
+    "A model file or parameter file that the reader refuses (docs/data-and-reports.md#model-file): \
+     `kind` says why (\"read\", \"syntax\", \"format\", \"shape\", \"value\"), `key` names the key \
+     path (\"level.ripples[0].period\") or is None, `line` and `column` place a syntax error."
+);
+create_exception!(
+    leuven_rt,
     InputError,
     PyValueError,
     "An input signal, step size or option is not what the function expects."

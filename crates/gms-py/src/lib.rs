@@ -11,6 +11,7 @@
 mod compensator;
 mod convert;
 mod errors;
+mod file;
 mod level;
 mod mechanics;
 mod model;
@@ -26,12 +27,19 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ParameterError", py.get_type::<errors::ParameterError>())?;
     m.add("InputError", py.get_type::<errors::InputError>())?;
     m.add("DivergenceError", py.get_type::<errors::DivergenceError>())?;
+    m.add("ModelFileError", py.get_type::<errors::ModelFileError>())?;
     // The version of the package: the workspace's, which maturin also gives the wheel.
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ELEMENTS", gms_dyn::MAX_ELEMENTS)?;
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_object, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_load, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_to_json, m)?)?;
     m.add_class::<params::CoreParams>()?;
     m.add_class::<level::CoreLevel>()?;
     m.add("MAX_RIPPLES", gms_dyn::MAX_RIPPLES)?;
