@@ -18,10 +18,17 @@ __all__ = [
     "Engine",
     "InputError",
     "MassEngine",
+    "ModelFileError",
     "OnlineIdentifier",
     "ParameterError",
     "__version__",
     "check_params",
+    "model_file_from_json",
+    "model_file_from_object",
+    "model_file_load",
+    "model_file_to_json",
+    "parameter_file_from_json",
+    "parameter_file_to_json",
     "slip_responses",
 ]
 
@@ -37,6 +44,12 @@ _Mode = Literal["feedforward", "observer"]
 class ParameterError(ValueError): ...
 class InputError(ValueError): ...
 class DivergenceError(ValueError): ...
+
+class ModelFileError(ParameterError):
+    kind: Literal["read", "syntax", "format", "shape", "value"]
+    key: str | None
+    line: int | None
+    column: int | None
 
 class _ParamsLike(Protocol):
     """What the extension reads from a parameter set: the attributes of ``leuven_rt.Params``."""
@@ -106,6 +119,12 @@ class CoreLevel:
     def ripples(self) -> int: ...
 
 def check_params(params: _ParamsLike | CoreParams) -> None: ...
+def model_file_from_json(text: str) -> dict[str, Any]: ...
+def model_file_from_object(object: Any) -> dict[str, Any]: ...
+def model_file_load(path: str) -> dict[str, Any]: ...
+def model_file_to_json(object: Any) -> str: ...
+def parameter_file_from_json(text: str) -> dict[str, Any]: ...
+def parameter_file_to_json(object: Any) -> str: ...
 def slip_responses(x: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]: ...
 
 @disjoint_base

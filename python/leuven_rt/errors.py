@@ -1,7 +1,9 @@
 """Every exception and warning of leuven_rt.
 
 The three the Rust core raises (:class:`ParameterError`, :class:`InputError`,
-:class:`DivergenceError`) are defined in the extension, so that the core and the Python modules
+:class:`DivergenceError`) and the one of the file reader (:class:`ModelFileError`, a
+:class:`ParameterError` with the refusal's ``kind``, ``key``, ``line`` and ``column``) are defined
+in the extension, so that the core and the Python modules
 raise the same classes; the rest are Python-only and subclass them or ``ValueError``, so that
 ``except ValueError`` (or ``except InputError`` for bad data) catches every refusal.
 
@@ -12,13 +14,14 @@ It says nothing about the arguments, and the same call succeeds once the other o
 
 from __future__ import annotations
 
-from ._core import DivergenceError, InputError, ParameterError
+from ._core import DivergenceError, InputError, ModelFileError, ParameterError
 
 __all__ = [
     "ConcurrentUseError",
     "DataError",
     "DivergenceError",
     "InputError",
+    "ModelFileError",
     "OutputError",
     "ParameterError",
     "ResamplingWarning",

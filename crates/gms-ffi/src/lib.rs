@@ -99,9 +99,10 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
-    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
-    /// object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
-    /// has an unknown, missing or mistyped key; the error message names the key or the cause.
+    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not JSON,
+    /// has a `format` or `version` this library does not read, or has a key given twice, an
+    /// unknown or missing key, or a value of the wrong type; the error message names the key
+    /// path or the cause (docs/data-and-reports.md#model-file).
     LEUVEN_RT_INVALID_FILE = 8,
 }
 
@@ -249,7 +250,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
-        8 => c"the parameter or model file cannot be read, or has another format or version, or an unknown, missing or mistyped key",
+        8 => c"the parameter or model file cannot be read, is not JSON, has another format or version, or a repeated, unknown, missing or mistyped key",
         _ => c"unknown status",
     };
     message.as_ptr()
@@ -282,25 +283,24 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
     finish(created, error)
 }
 
-/// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
-/// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
-/// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
-/// Otherwise as `leuven_rt_compensator_create`.
+/// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
+/// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+/// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 ///
-/// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
-/// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
-/// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
-/// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
-/// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
-/// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
-/// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
-/// start position (`leuven_rt_compensator_set_position`).
+/// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
+/// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
+/// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
+/// `friction` and `level` (a model file with a level in feedforward mode needs the start
+/// position, `leuven_rt_compensator_set_position`); `units`, `measurement`, `reconstruction` and
+/// `report` are checked but not the compensator's. A plain parameter file reads as a model file
+/// of that friction, its keys named `friction.<key>`.
 ///
-/// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
-/// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
-/// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
-/// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
-/// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`: `Fc`, `Fs`).
+/// Text that is not JSON, a `format` or `version` this library does not read (a later version
+/// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
+/// type or beyond the f64 range give `LEUVEN_RT_INVALID_FILE`; a value that breaks a rule of the
+/// model gives `LEUVEN_RT_INVALID_PARAMETER` and the field, as with the struct. The message
+/// starts with the key path (`` `level.ripples[0].period`: ``), or says "not JSON" with the line
+/// and column of a syntax error.
 ///
 /// # Safety
 /// `json` must be null or point to `len` readable bytes; `out` and `error` as in
@@ -330,9 +330,10 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
     finish(created, error)
 }
 
-/// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
-/// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
-/// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+/// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
+/// name), as `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be
+/// read (missing, not a regular file, larger than 1 MiB, not UTF-8) gives
+/// `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
 ///
 /// # Safety
 /// `path` must be null or a NUL-terminated string; `out` and `error` as in
