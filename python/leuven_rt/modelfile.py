@@ -61,7 +61,9 @@ class Reconstruction:
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
-            raise ParameterError(f"`reconstruction.source` must be one of {list(SOURCES)}, got {self.source!r:.80}")
+            raise ParameterError(
+                f"`reconstruction.source` must be one of {list(SOURCES)}, got {self.source!r:.80}"
+            )
         if self.cutoff is not None:
             object.__setattr__(self, "cutoff", _real("reconstruction.cutoff", self.cutoff))
 
@@ -85,7 +87,9 @@ class PositionForce:
         object.__setattr__(self, "half_stroke", _real("half_stroke", self.half_stroke))
         trend = _reals("trend", self.trend)
         if len(trend) != 2:
-            raise ParameterError(f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}")
+            raise ParameterError(
+                f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}"
+            )
         object.__setattr__(self, "trend", trend)
         object.__setattr__(self, "ripples", _ripples(self.ripples))
 

@@ -533,16 +533,16 @@ def test_from_dict_rejects_unknown_and_missing_keys(mapping: Any, message: str) 
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("{", r"parameters must be JSON text of an object: Expecting property name"),
-        ('{"Fc": 1.0,}', r"parameters must be JSON text of an object"),
-        ("", r"parameters must be JSON text of an object: Expecting value"),
-        ("[1, 2]", r"parameters must be a mapping, got list"),
-        ("null", r"parameters must be a mapping, got NoneType"),
-        (None, r"parameters must be JSON text of an object: the JSON object must be str"),
+        ("{", r"not JSON: EOF while parsing an object at line 1, column 1"),
+        ('{"Fc": 1.0,}', r"not JSON: trailing comma at line 1, column 12"),
+        ("", r"not JSON: EOF while parsing a value at line 1, column 0"),
+        ("[1, 2]", r"a model file or parameter file must be a JSON object, got a sequence"),
+        ("null", r"a model file or parameter file must be a JSON object, got null"),
+        (None, r"a parameter file's text must be a str, got NoneType"),
         ('{"Fc": 1.0, "Fs": 1.5, "Vs": 1e-3, "delta": 2, "n": 1, "sigma0": -1}',
-         r"`sigma0` must be finite and > 0, got -1"),
+         r"`sigma0`: `sigma0` must be finite and > 0, got -1"),
         ('{"Fc": 1.0, "Fs": 1.5, "Vs": 1e-3, "delta": 2, "n": 1, "sigma0": NaN}',
-         r"(?i)`sigma0` must be finite and > 0, got nan"),
+         r"not JSON: expected value"),
     ],
 )  # fmt: skip
 def test_from_json_rejects_invalid_json(text: Any, message: str) -> None:

@@ -60,7 +60,9 @@ def test_every_case_is_read_as_the_table_says(case: dict[str, Any]) -> None:
     assert (error.kind, error.key) == (case["kind"], case["key"]), str(error)
     if case["kind"] == "syntax":
         assert error.line is not None and error.column is not None
-        assert str(error).startswith("not JSON: ") and f"line {error.line}, column {error.column}" in str(error)
+        assert str(error).startswith("not JSON: ") and f"line {error.line}, column {error.column}" in str(
+            error
+        )
     else:
         assert error.line is None and error.column is None
     if case["key"] is not None:

@@ -31,7 +31,11 @@ OK, INVALID_FILE, INVALID_PARAMETER = 0, 8, 2
 
 
 class _Error(ctypes.Structure):
-    _fields_ = [("field", ctypes.c_char_p), ("index", ctypes.c_size_t), ("message", ctypes.c_char * MESSAGE_SIZE)]
+    _fields_ = [
+        ("field", ctypes.c_char_p),
+        ("index", ctypes.c_size_t),
+        ("message", ctypes.c_char * MESSAGE_SIZE),
+    ]
 
 
 def _shared_library() -> Path:
@@ -70,7 +74,9 @@ def _c_read(library: ctypes.CDLL, text: str) -> tuple[int, str]:
     data = text.encode("utf-8")
     out = ctypes.c_void_p()
     error = _Error()
-    status = library.leuven_rt_compensator_create_from_json(data, len(data), 1e-3, 1, ctypes.byref(out), ctypes.byref(error))
+    status = library.leuven_rt_compensator_create_from_json(
+        data, len(data), 1e-3, 1, ctypes.byref(out), ctypes.byref(error)
+    )
     assert (status == OK) == (out.value is not None), "*out is written exactly on success"
     library.leuven_rt_compensator_destroy(out)
     return status, error.message.decode("utf-8", errors="replace")
@@ -103,27 +109,34 @@ def frictions(draw: st.DrawFn) -> dict[str, Any]:
 def position_terms(draw: st.DrawFn) -> dict[str, Any] | None:
     if draw(st.booleans()):
         return None
-    ripples = [
-        {"period": draw(st.floats(1e-3, 1.0)), "cos": [draw(small) for _ in range(k)], "sin": [draw(small) for _ in range(k)]}
-        for k in draw(st.lists(st.integers(1, 3), max_size=2))
-    ]  # fmt: skip
-    return {"middle": draw(small), "half_stroke": draw(st.floats(1e-3, 1.0)), "trend": [draw(small), draw(small)],
-            "ripples": ripples}  # fmt: skip
+    ripples = []
+    for harmonics in draw(st.lists(st.integers(1, 3), max_size=2)):
+        cos = [draw(small) for _ in range(harmonics)]
+        sin = [draw(small) for _ in range(harmonics)]
+        ripples.append({"period": draw(st.floats(1e-3, 1.0)), "cos": cos, "sin": sin})
+    trend = [draw(small), draw(small)]
+    return {
+        "middle": draw(small),
+        "half_stroke": draw(st.floats(1e-3, 1.0)),
+        "trend": trend,
+        "ripples": ripples,
+    }
 
 
+scalars = st.none() | st.booleans() | st.integers(-(10**20), 10**20) | st.text(max_size=8)
 json_values = st.recursive(
-    st.none() | st.booleans() | st.integers(-(10**20), 10**20) | st.floats(allow_nan=False, allow_infinity=False)
-    | st.text(max_size=8),
+    scalars | st.floats(allow_nan=False, allow_infinity=False),
     lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=6), inner, max_size=3),
     max_leaves=10,
-)  # fmt: skip
+)
 
 
 @st.composite
 def model_files(draw: st.DrawFn) -> dict[str, Any]:
     version = draw(st.sampled_from([1, 2]))
-    out: dict[str, Any] = {"format": "leuven-rt model", "version": version,
-                           "units": draw(st.sampled_from(["linear", "rotary"])), "friction": draw(frictions())}  # fmt: skip
+    units = draw(st.sampled_from(["linear", "rotary"]))
+    out: dict[str, Any] = {"format": "leuven-rt model", "version": version, "units": units}
+    out["friction"] = draw(frictions())
     optional: dict[str, Any] = {
         "level": draw(position_terms()),
         "measurement": {"offset": draw(small), "inertia": draw(st.floats(0.0, 10.0))},
@@ -131,9 +144,10 @@ def model_files(draw: st.DrawFn) -> dict[str, Any]:
     }
     if version == 2:
         optional["position_force"] = draw(position_terms())
+        cutoffs = st.none() | st.floats(0.1, 500.0)
+        sources = st.sampled_from(["velocity", "position"])
         optional["reconstruction"] = draw(
-            st.none() | st.fixed_dictionaries({"source": st.sampled_from(["velocity", "position"]),
-                                               "cutoff": st.none() | st.floats(0.1, 500.0)})  # fmt: skip
+            st.none() | st.fixed_dictionaries({"source": sources, "cutoff": cutoffs})
         )
     for key, value in optional.items():
         if draw(st.booleans()):
@@ -164,13 +178,17 @@ def _parent(document: Any, path: tuple[Any, ...]) -> Any:
     return document
 
 
-REPLACEMENTS = st.sampled_from([None, True, "1.0", [], {}, [1.0, 2.0, 3.0], 0, -1.0, 0.0, 1e308, 2, 3, "linear"])
+REPLACEMENTS = st.sampled_from(
+    [None, True, "1.0", [], {}, [1.0, 2.0, 3.0], 0, -1.0, 0.0, 1e308, 2, 3, "linear"]
+)
 
 
 @st.composite
 def mutated_texts(draw: st.DrawFn) -> str:
     document = draw(model_files())
-    kind = draw(st.sampled_from(["none", "drop", "add", "replace", "duplicate", "nan", "huge", "cut", "version"]))
+    kind = draw(
+        st.sampled_from(["none", "drop", "add", "replace", "duplicate", "nan", "huge", "cut", "version"])
+    )
     paths = [path for path in _paths(document) if path]
     if kind in ("drop", "add", "replace") and paths:
         path = draw(st.sampled_from(paths))
@@ -189,7 +207,9 @@ def mutated_texts(draw: st.DrawFn) -> str:
         if key in text:
             text = text.replace(f"{key}:", f"{key}: 1, {key}:", 1)
     elif kind == "nan":
-        text = text.replace(draw(st.sampled_from(['"Fc": ', '"offset": ', '"middle": '])), '"Fc": NaN, "x": ', 1)
+        text = text.replace(
+            draw(st.sampled_from(['"Fc": ', '"offset": ', '"middle": '])), '"Fc": NaN, "x": ', 1
+        )
     elif kind == "huge":
         text = text.replace('"Vs": ', '"Vs": 1' + "0" * draw(st.integers(300, 5000)) + ', "y": ', 1)
     elif kind == "cut":
