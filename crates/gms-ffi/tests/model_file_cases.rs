@@ -1,8 +1,8 @@
-//! The table of model-file cases (tests/fixtures/model_files/cases.json) through the C entry
+//! The table of model-file cases (`tests/fixtures/model_files/cases.json`) through the C entry
 //! point `leuven_rt_compensator_create_from_json`: each case gets the status the table gives, a
 //! refusal's message names the key path (or says "not JSON" with the line and column of a
 //! syntax error), and a refused call leaves `*out` as it was. The Python package is tested
-//! against the same table (tests/core/test_model_file_cases.py).
+//! against the same table (`tests/core/test_model_file_cases.py`).
 
 use core::ffi::{c_char, CStr};
 
@@ -10,8 +10,8 @@ use gms_ffi::leuven_rt_status::{
     LEUVEN_RT_INVALID_FILE, LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_OK,
 };
 use gms_ffi::{
-    leuven_rt_compensator, leuven_rt_compensator_create_from_json,
-    leuven_rt_compensator_destroy, leuven_rt_error, leuven_rt_status, LEUVEN_RT_MODE_OBSERVER,
+    leuven_rt_compensator, leuven_rt_compensator_create_from_json, leuven_rt_compensator_destroy,
+    leuven_rt_error, leuven_rt_status, LEUVEN_RT_MODE_OBSERVER,
 };
 use serde_json::Value;
 
@@ -53,7 +53,11 @@ fn create(text: &str) -> (leuven_rt_status, String) {
             &raw mut error,
         )
     };
-    assert_eq!(status == LEUVEN_RT_OK, !out.is_null(), "*out is written exactly on success");
+    assert_eq!(
+        status == LEUVEN_RT_OK,
+        !out.is_null(),
+        "*out is written exactly on success"
+    );
     // SAFETY: null or the handle just created.
     unsafe { leuven_rt_compensator_destroy(out) };
     // SAFETY: the library always writes a NUL-terminated message.
@@ -75,7 +79,9 @@ fn the_c_library_reads_every_case_as_the_table_says() {
             (Some(_), None) => !message.is_empty(),
         };
         if status != expected || !named {
-            wrong.push(format!("{name}: {status:?} {message:?}, expected {expected:?}"));
+            wrong.push(format!(
+                "{name}: {status:?} {message:?}, expected {expected:?}"
+            ));
         }
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));

@@ -34,58 +34,58 @@ impl Units {
 #[serde(deny_unknown_fields)]
 #[allow(non_snake_case)] // the paper's names, spelled as the file spells them
 pub struct Friction {
-    /// Coulomb level [N].
+    /// Coulomb level \[N\].
     pub Fc: f64,
-    /// Static level [N].
+    /// Static level \[N\].
     pub Fs: f64,
-    /// Stribeck velocity [m/s].
+    /// Stribeck velocity \[m/s\].
     pub Vs: f64,
     /// Stribeck shape exponent.
     pub delta: f64,
     /// Transition-curve exponent.
     pub n: f64,
-    /// Micro-viscous coefficient [N·s/m]; 0 when absent.
+    /// Micro-viscous coefficient \[N·s/m\]; 0 when absent.
     #[serde(default)]
     pub sigma1: f64,
-    /// Viscous coefficient [N·s/m]; 0 when absent.
+    /// Viscous coefficient \[N·s/m\]; 0 when absent.
     #[serde(default)]
     pub sigma2: f64,
-    /// Saturation forces of the Maxwell-slip elements [N], with `Delta`.
+    /// Saturation forces of the Maxwell-slip elements \[N\], with `Delta`.
     #[serde(
         default,
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
     pub W: Option<Vec<f64>>,
-    /// Break deflections of the Maxwell-slip elements [m], with `W`.
+    /// Break deflections of the Maxwell-slip elements \[m\], with `W`.
     #[serde(
         default,
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
     pub Delta: Option<Vec<f64>>,
-    /// Stiffness of a linear hysteresis [N/m], instead of `W` and `Delta`.
+    /// Stiffness of a linear hysteresis \[N/m\], instead of `W` and `Delta`.
     #[serde(
         default,
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
     pub sigma0: Option<f64>,
-    /// Coulomb level for v < 0 [N]; `Fc` when absent.
+    /// Coulomb level for v < 0 \[N\]; `Fc` when absent.
     #[serde(
         default,
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
     pub Fc_neg: Option<f64>,
-    /// Static level for v < 0 [N]; `Fs` when absent.
+    /// Static level for v < 0 \[N\]; `Fs` when absent.
     #[serde(
         default,
         deserialize_with = "present",
         skip_serializing_if = "Option::is_none"
     )]
     pub Fs_neg: Option<f64>,
-    /// Viscous coefficient for v < 0 [N·s/m]; `sigma2` when absent. Not a key of version 1
+    /// Viscous coefficient for v < 0 \[N·s/m\]; `sigma2` when absent. Not a key of version 1
     /// model files.
     #[serde(
         default,
@@ -110,7 +110,7 @@ where
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ripple {
-    /// The period [m or rad].
+    /// The period \[m or rad\].
     pub period: f64,
     /// Amplitudes of cos(2πk·x/period), k = 1, 2, …
     pub cos: Vec<f64>,
@@ -121,14 +121,14 @@ pub struct Ripple {
 /// A term that depends on the position alone (docs/model.md#position-dependent-level): a trend
 /// along the stroke (Legendre coefficients of p = clip((x − `middle`)/`half_stroke`, −1, 1)) and
 /// ripples. As `level`, its amplitudes are relative to the friction level; as `position_force`,
-/// they are forces [N or N·m].
+/// they are forces \[N or N·m\].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PositionTerms {
-    /// Middle of the stroke [m or rad]; 0 when absent.
+    /// Middle of the stroke \[m or rad\]; 0 when absent.
     #[serde(default)]
     pub middle: f64,
-    /// Half the stroke [m or rad]; 1 when absent.
+    /// Half the stroke \[m or rad\]; 1 when absent.
     #[serde(default = "one")]
     pub half_stroke: f64,
     /// The trend's coefficients (t1, t2); zeros when absent.
@@ -155,7 +155,7 @@ impl Default for PositionTerms {
     }
 }
 
-/// The measurement terms: a constant force `offset` [N or N·m] and an `inertia` [kg or kg·m²]
+/// The measurement terms: a constant force `offset` \[N or N·m\] and an `inertia` \[kg or kg·m²\]
 /// times the acceleration, which the log's force held but which are not friction.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -186,7 +186,7 @@ pub enum Source {
 pub struct Reconstruction {
     /// The column.
     pub source: Source,
-    /// The low-pass cutoff [Hz], or `None` for the signal as logged.
+    /// The low-pass cutoff \[Hz\], or `None` for the signal as logged.
     #[serde(deserialize_with = "Option::deserialize")]
     pub cutoff: Option<f64>,
 }

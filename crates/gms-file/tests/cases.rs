@@ -1,7 +1,7 @@
-//! The table of model-file cases (tests/fixtures/model_files/cases.json), read by gms-file
+//! The table of model-file cases (`tests/fixtures/model_files/cases.json`), read by gms-file
 //! itself: every case accepted or refused as the table says, with the kind and the key path.
-//! The Python package (tests/core/test_model_file_cases.py) and the C library
-//! (crates/gms-ffi/tests/model_file_cases.rs) are tested against the same table.
+//! The Python package (`tests/core/test_model_file_cases.py`) and the C library
+//! (`crates/gms-ffi/tests/model_file_cases.rs`) are tested against the same table.
 
 use gms_file::ModelFile;
 use serde_json::Value;
@@ -39,7 +39,10 @@ fn every_case_is_read_as_the_table_says() {
         {
             wrong.push(format!(
                 "{name}: got {kind} {key} ({}), expected {} {}",
-                read.as_ref().err().map(ToString::to_string).unwrap_or_default(),
+                read.as_ref()
+                    .err()
+                    .map(ToString::to_string)
+                    .unwrap_or_default(),
                 case["kind"],
                 case["key"]
             ));
