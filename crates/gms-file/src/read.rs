@@ -442,7 +442,12 @@ impl<'de> Deserializer<'de> for Strict {
         variants: &'static [&'static str],
         visitor: V,
     ) -> Result<V::Value, Self::Error> {
-        self.0.deserialize_enum(name, variants, visitor)
+        // The file's enums (`units`, `source`) are strings; serde_json's `Value` would also take
+        // an object `{"linear": null}`.
+        match self.0 {
+            Value::String(_) => self.0.deserialize_enum(name, variants, visitor),
+            other => Err(de::Error::invalid_type(unexpected(&other), &visitor)),
+        }
     }
 
     fn deserialize_newtype_struct<V: Visitor<'de>>(
