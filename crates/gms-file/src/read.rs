@@ -26,9 +26,9 @@ use crate::{FORMAT, MAX_FILE_BYTES, VERSION};
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BodyV2 {
-    #[allow(dead_code)] // checked by the first pass
+    #[allow(dead_code)] // checked before the typed read, by `kind`
     format: IgnoredAny,
-    #[allow(dead_code)] // checked by the first pass
+    #[allow(dead_code)] // checked before the typed read, by `kind`
     version: IgnoredAny,
     units: Units,
     friction: Friction,
@@ -49,9 +49,9 @@ struct BodyV2 {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BodyV1 {
-    #[allow(dead_code)] // checked by the first pass
+    #[allow(dead_code)] // checked before the typed read, by `kind`
     format: IgnoredAny,
-    #[allow(dead_code)] // checked by the first pass
+    #[allow(dead_code)] // checked before the typed read, by `kind`
     version: IgnoredAny,
     units: Units,
     friction: Friction,
