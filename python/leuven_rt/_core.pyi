@@ -14,6 +14,7 @@ __all__ = [
     "CompensatorEngine",
     "CoreLevel",
     "CoreParams",
+    "CorePositionForce",
     "DivergenceError",
     "Engine",
     "InputError",
@@ -73,6 +74,8 @@ class _ParamsLike(Protocol):
     @property
     def Fs_neg(self) -> float | None: ...
     @property
+    def sigma2_neg(self) -> float | None: ...
+    @property
     def sigma0(self) -> float | None: ...
     @property
     def W(self) -> Any: ...
@@ -97,8 +100,9 @@ class _RippleLike(Protocol):
     @property
     def sin(self) -> Any: ...
 
-class _LevelLike(Protocol):
-    """What the extension reads from a level: the attributes of ``leuven_rt.level.PositionLevel``."""
+class _SeriesLike(Protocol):
+    """What the extension reads from a level or a position force: the attributes of
+    ``leuven_rt.level.PositionLevel`` and ``leuven_rt.level.PositionForce``."""
 
     @property
     def middle(self) -> float: ...
@@ -111,10 +115,19 @@ class _LevelLike(Protocol):
 
 @final
 class CoreLevel:
-    """A position-dependent level validated once; the compensator and the position run take it."""
+    """A position-dependent level validated once; the compensator and the runs take it."""
 
-    def __new__(cls, level: _LevelLike | CoreLevel) -> Self: ...
-    def factor(self, x: float) -> float: ...
+    def __new__(cls, level: _SeriesLike | CoreLevel) -> Self: ...
+    def factor(self, x: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    @property
+    def ripples(self) -> int: ...
+
+@final
+class CorePositionForce:
+    """A position force validated once; the compensator and the runs take it."""
+
+    def __new__(cls, force: _SeriesLike | CorePositionForce) -> Self: ...
+    def force(self, x: NDArray[np.float64]) -> NDArray[np.float64]: ...
     @property
     def ripples(self) -> int: ...
 
@@ -148,7 +161,19 @@ class Engine:
     ) -> NDArray[np.float64]: ...
     def _run(self, input: NDArray[np.float64], dt: float, position: bool) -> NDArray[np.float64]: ...
     def _run_position_level(
-        self, input: NDArray[np.float64], dt: float, level: _LevelLike | CoreLevel
+        self,
+        input: NDArray[np.float64],
+        dt: float,
+        level: _SeriesLike | CoreLevel | None,
+        position_force: _SeriesLike | CorePositionForce | None,
+    ) -> NDArray[np.float64]: ...
+    def _run_level(
+        self,
+        v: NDArray[np.float64],
+        x: NDArray[np.float64],
+        dt: float,
+        level: _SeriesLike | CoreLevel | None,
+        position_force: _SeriesLike | CorePositionForce | None,
     ) -> NDArray[np.float64]: ...
     def _run_position_deflection(
         self, x: NDArray[np.float64], dt: float
@@ -171,12 +196,15 @@ class CompensatorEngine:
         params: _ParamsLike | CoreParams,
         dt: float,
         mode: _Mode,
-        level: _LevelLike | CoreLevel | None = None,
+        level: _SeriesLike | CoreLevel | None = None,
+        position_force: _SeriesLike | CorePositionForce | None = None,
+        x: float | None = None,
     ) -> Self: ...
     def step(self, input: float) -> float: ...
+    def step_trajectory(self, v: float, x: float) -> float: ...
     def set_position(self, x: float) -> None: ...
     @property
-    def position(self) -> float: ...
+    def position(self) -> float | None: ...
     def set_params(self, params: _ParamsLike | CoreParams) -> None: ...
     def reset(self) -> None: ...
     @property

@@ -1,8 +1,8 @@
 """The versioned model file: a friction model with what a fit found beside it, in one JSON file.
 
 A :class:`ModelFile` holds the friction model (:class:`~leuven_rt.Params`), its optional
-position-dependent level (:class:`~leuven_rt.level.PositionLevel`), an optional force that
-depends on the position alone (:class:`PositionForce`: cogging, gear mesh), the measurement terms
+position-dependent level (:class:`~leuven_rt.PositionLevel`), an optional force that depends on
+the position alone (:class:`~leuven_rt.PositionForce`: cogging, gear mesh), the measurement terms
 of the log it was fitted to (a constant force ``offset`` and an ``inertia`` times the
 acceleration: they explain the measured force but are not friction, so a compensator ignores
 them), the kind of axis (``units``), how the model's motion signal is made from a log
@@ -31,8 +31,8 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._typing import FloatArray
 from .errors import ParameterError
-from .level import PositionLevel, Ripple, _ripples
-from .params import Params, _real, _reals
+from .level import PositionForce, PositionLevel, Ripple
+from .params import Params, _real
 from .units import Units
 
 #: The value of the ``"format"`` key that marks a model file.
@@ -68,45 +68,6 @@ class Reconstruction:
             object.__setattr__(self, "cutoff", _real("reconstruction.cutoff", self.cutoff))
 
 
-# ADAPTER until leuven_rt.PositionForce (branch core-terms, gms-core's PositionForce) lands:
-# the position force as a model file holds it, its types checked here and its values by gms-file.
-@dataclass(frozen=True)
-class PositionForce:
-    """A force [N or N·m] that depends on the position alone, added in both directions of motion
-    (cogging, gear mesh, a gravity-like torque along the stroke): the shape of
-    :class:`~leuven_rt.level.PositionLevel` (``middle``, ``half_stroke``, ``trend``, ``ripples``),
-    with the trend's and the ripples' amplitudes in force units."""
-
-    middle: float = 0.0
-    half_stroke: float = 1.0
-    trend: tuple[float, float] = (0.0, 0.0)
-    ripples: tuple[Ripple, ...] = ()
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "middle", _real("middle", self.middle))
-        object.__setattr__(self, "half_stroke", _real("half_stroke", self.half_stroke))
-        trend = _reals("trend", self.trend)
-        if len(trend) != 2:
-            raise ParameterError(
-                f"`trend` must have 2 coefficients (t1, t2), got {len(trend)}: {trend!r:.80}"
-            )
-        object.__setattr__(self, "trend", trend)
-        object.__setattr__(self, "ripples", _ripples(self.ripples))
-
-
-def _terms_dict(terms: PositionLevel | PositionForce) -> dict[str, Any]:
-    """The JSON object of a level or a position force."""
-    return {
-        "middle": terms.middle,
-        "half_stroke": terms.half_stroke,
-        "trend": list(terms.trend),
-        "ripples": [
-            {"period": ripple.period, "cos": list(ripple.cos), "sin": list(ripple.sin)}
-            for ripple in terms.ripples
-        ],
-    }
-
-
 def _terms_fields(mapping: Mapping[str, Any]) -> dict[str, Any]:
     """The fields of a level or position force from its (validated) JSON object."""
     return {
@@ -122,7 +83,7 @@ def _object(value: Any, kind: type) -> Any:
     mapping, None, or something the reader refuses naming the key)."""
     if isinstance(value, kind):
         if isinstance(value, (PositionLevel, PositionForce)):
-            return _terms_dict(value)
+            return value.to_dict()
         if isinstance(value, Reconstruction):
             return {"source": value.source, "cutoff": value.cutoff}
         if isinstance(value, Params):
@@ -158,8 +119,8 @@ def _plain(value: Any, key: str) -> Any:
 class ModelFile:
     """A friction model as a file holds it (module documentation): ``friction`` (a
     :class:`Params` or a mapping of its keys), ``level`` (a :class:`PositionLevel`, its JSON
-    object, or ``None``), ``position_force`` (a :class:`PositionForce`, its JSON object, or
-    ``None``), the measurement terms ``offset`` [N or N·m] and ``inertia`` [kg or kg·m²],
+    object, or ``None``), ``position_force`` (a :class:`~leuven_rt.PositionForce`, its JSON
+    object, or ``None``), the measurement terms ``offset`` [N or N·m] and ``inertia`` [kg or kg·m²],
     ``units`` (``"linear"`` or ``"rotary"``), ``reconstruction`` (a :class:`Reconstruction`, its
     JSON object, or ``None``) and ``report`` (a JSON object, or ``None``; numpy values become
     Python ones, integer keys text, non-finite numbers ``None``).
@@ -217,8 +178,8 @@ class ModelFile:
             "version": VERSION,
             "units": self.units,
             "friction": self.friction.to_dict(),
-            "level": None if self.level is None else _terms_dict(self.level),
-            "position_force": None if self.position_force is None else _terms_dict(self.position_force),
+            "level": None if self.level is None else self.level.to_dict(),
+            "position_force": None if self.position_force is None else self.position_force.to_dict(),
             "measurement": {"offset": self.offset, "inertia": self.inertia},
             "reconstruction": _object(self.reconstruction, Reconstruction),
             "report": None if self.report is None else dict(self.report),
@@ -273,9 +234,6 @@ def _fields(checked: Mapping[str, Any], friction: Params | Mapping[str, Any] | N
     """The fields of a :class:`ModelFile` from the plain values gms-file returned; ``friction``
     is kept when it is already the :class:`Params` of those values."""
     parameters = dict(checked["friction"])
-    # ADAPTER until leuven_rt.Params has `sigma2_neg` (branch core-terms): gms-file accepts it only
-    # equal to sigma2 for now, which is the symmetric model Params holds.
-    parameters.pop("sigma2_neg", None)
     if not (isinstance(friction, Params) and friction.to_dict() == parameters):
         friction = Params(**parameters)
     level, position_force = checked["level"], checked["position_force"]
@@ -320,7 +278,6 @@ __all__ = [
     "VERSION",
     "ModelFile",
     "ModelLike",
-    "PositionForce",
     "Reconstruction",
     "as_model_file",
 ]

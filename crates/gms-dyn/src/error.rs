@@ -158,7 +158,8 @@ fn core_kind(error: &gms_core::Error) -> ErrorKind {
         | Core::Negative { field, .. }
         | Core::NotFiniteValue { field, .. }
         | Core::NotInUnitInterval { field, .. }
-        | Core::NotFinite { field, .. } => {
+        | Core::NotFinite { field, .. }
+        | Core::Missing { field } => {
             if is_input(field) {
                 ErrorKind::Input
             } else {
@@ -179,7 +180,8 @@ fn core_kind(error: &gms_core::Error) -> ErrorKind {
         | Core::HarmonicLengths { .. }
         | Core::TooManyHarmonics { .. }
         | Core::RippleCoefficient { .. }
-        | Core::LevelTooDeep { .. } => ErrorKind::Parameter,
+        | Core::LevelTooDeep { .. }
+        | Core::PhaseUnresolved { .. } => ErrorKind::Parameter,
         Core::VelocityNotFinite { .. }
         | Core::Overflow { .. }
         | Core::InputsOverflow { .. }

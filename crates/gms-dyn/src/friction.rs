@@ -4,7 +4,7 @@
 #[cfg(feature = "parallel")]
 use gms_batch::LANES;
 use gms_batch::{BatchHysteresis, Signal};
-use gms_core::{Hysteresis, Level, Params, Scheme, State};
+use gms_core::{Hysteresis, Level, Params, PositionForce, Scheme, State};
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
@@ -38,8 +38,7 @@ trait FrictionChannels: Send + Sync {
         &mut self,
         input: &[f64],
         dt: f64,
-        kind: Input,
-        level: &Level,
+        signal: Signal<'_>,
         out: &mut [f64],
     ) -> Result<(), Error>;
     fn trace_position(
@@ -103,12 +102,21 @@ where
         &mut self,
         input: &[f64],
         dt: f64,
-        kind: Input,
-        level: &Level,
+        signal: Signal<'_>,
         out: &mut [f64],
     ) -> Result<(), Error> {
         let samples = samples_per_channel(input.len(), self.states.len())?;
         check_output(input.len(), out.len())?;
+        if let Signal::VelocityAt { x, .. } = signal {
+            if x.len() != input.len() {
+                return Err(gms_core::Error::InputLengthMismatch {
+                    field: gms_core::Field::x,
+                    expected: input.len(),
+                    got: x.len(),
+                }
+                .into());
+            }
+        }
         let (params, scheme) = (&self.params, self.scheme);
         if samples == 0 {
             // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
@@ -117,10 +125,6 @@ where
         // gms-batch steps the channels several at a time (LANES of them in SIMD lanes), and hands
         // any group with a rejected sample to gms-core's block calls, which check dt and scan
         // each row for finiteness before they step: the one check, and the same errors.
-        let signal = match kind {
-            Input::Velocity => Signal::Velocity,
-            Input::Position => Signal::Position(level),
-        };
         let run = |states: &mut [State<H::Memory>], input: &[f64], out: &mut [f64]| {
             gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
         };
@@ -136,7 +140,9 @@ where
                     .zip(input.par_chunks(block).zip(out.par_chunks_mut(block)))
                     .enumerate()
                     .filter_map(|(group, (states, (input, out)))| {
-                        run(states, input, out)
+                        let start = group * block;
+                        let signal = signal.rows(start..start + input.len());
+                        gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
                             .map(|(channel, error)| (group * LANES + channel, error))
                     })
                     .min_by_key(|(channel, _)| *channel);
@@ -277,23 +283,62 @@ impl FrictionBank {
         kind: Input,
         out: &mut [f64],
     ) -> Result<(), Error> {
-        self.channels.run(input, dt, kind, &Level::none(), out)
+        let signal = match kind {
+            Input::Velocity => Signal::Velocity,
+            Input::Position => Signal::Position {
+                level: &Level::none(),
+                force: &PositionForce::none(),
+            },
+        };
+        self.channels.run(input, dt, signal, out)
     }
 
-    /// [`FrictionBank::run`] on positions `x` with a position-dependent level
-    /// (docs/model.md#position-dependent-level): each force is factor(x)·(F − σ2·v) + σ2·v. The
-    /// states evolve as without the level; a flat level gives the plain forces bit for bit.
+    /// [`FrictionBank::run`] on positions `x` with a position-dependent level and a position
+    /// force (docs/model.md#position-dependent-level): each force is
+    /// factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x). The states evolve as without them; none of
+    /// either gives the plain forces bit for bit.
     ///
     /// # Errors
-    /// As [`FrictionBank::run`]; a force that the level makes non-finite is a divergence.
+    /// As [`FrictionBank::run`]; a force that the terms make non-finite is a divergence.
     pub fn run_position_level(
         &mut self,
         x: &[f64],
         dt: f64,
         level: &Level,
+        position_force: &PositionForce,
         out: &mut [f64],
     ) -> Result<(), Error> {
-        self.channels.run(x, dt, Input::Position, level, out)
+        let signal = Signal::Position {
+            level,
+            force: position_force,
+        };
+        self.channels.run(x, dt, signal, out)
+    }
+
+    /// [`FrictionBank::run`] on velocities `v` with the position of every sample, `x` (the
+    /// same shape), which places the level and the position force: gms-core's
+    /// `Params::simulate_level` on every channel, as a log with a measured velocity column
+    /// drives the model. The states evolve as on `v` alone.
+    ///
+    /// # Errors
+    /// As [`FrictionBank::run`], and `gms_core::Error::InputLengthMismatch` naming `x` when it
+    /// is not the shape of `v`; a non-finite position is refused naming `x`, the sample and
+    /// the channel.
+    pub fn run_level(
+        &mut self,
+        v: &[f64],
+        x: &[f64],
+        dt: f64,
+        level: &Level,
+        position_force: &PositionForce,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        let signal = Signal::VelocityAt {
+            x,
+            level,
+            force: position_force,
+        };
+        self.channels.run(v, dt, signal, out)
     }
 
     /// Runs `channel` over positions `x`, writing the forces into `out` and the deflection z

@@ -9,7 +9,7 @@
 //! - [`FrictionBank`] and [`MassBank`]: channels of the friction model, or of a mass on it,
 //!   that share one parameter set; block runs go over the channels in parallel, all or nothing.
 //! - [`Compensator`]: one axis of friction compensation, optionally with a position-dependent
-//!   [`Level`] (re-exported from gms-core, which validates it).
+//!   [`Level`] and a [`PositionForce`] (re-exported from gms-core, which validates them).
 //! - [`OnlineIdentifier`] and [`slip_responses`]: identification with N chosen at run time.
 //! - [`Error`]: gms-core's rules plus the refusals of this layer, each displayed as the whole
 //!   message the user reads.
@@ -29,10 +29,10 @@ mod online;
 mod params;
 mod slip;
 
-pub use compensator::{Compensator, CompensatorState};
+pub use compensator::{Compensator, CompensatorState, Terms};
 pub use error::{Error, ErrorKind};
 pub use friction::{FrictionBank, Input};
-pub use gms_core::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
+pub use gms_core::{Level, PositionForce, PositionSeries, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use kind::HysteresisKind;
 pub use mass::{MassBank, MassStates, Mechanics};
 pub use online::OnlineIdentifier;

@@ -56,7 +56,8 @@ pub struct RawElements<'a> {
 /// A parameter set as plain values, exactly as a caller gives it, not yet validated.
 ///
 /// The direction-dependent levels are resolved by the caller (Python's `None` and C's 0 both
-/// mean "same as `Fc`/`Fs`"). Exactly one of `sigma0` and `elements` should be given.
+/// mean "same as `Fc`/`Fs`"); `sigma2_neg` is `None` when not given ("same as `sigma2`").
+/// Exactly one of `sigma0` and `elements` should be given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RawParams<'a> {
     /// Coulomb level.
@@ -77,6 +78,8 @@ pub struct RawParams<'a> {
     pub fc_neg: f64,
     /// Static level for negative velocity.
     pub fs_neg: f64,
+    /// Viscous coefficient for negative velocity; `None`: `sigma2`.
+    pub sigma2_neg: Option<f64>,
     /// Stiffness of linear hysteresis, if that is the kind given.
     pub sigma0: Option<f64>,
     /// Maxwell-slip elements, if that is the kind given (possibly empty).
@@ -143,7 +146,11 @@ impl RawParams<'_> {
             self.vs,
             self.delta,
         )?;
-        Params::new(stribeck, self.n, self.sigma1, self.sigma2, hysteresis)
+        let params = Params::new(stribeck, self.n, self.sigma1, self.sigma2, hysteresis)?;
+        match self.sigma2_neg {
+            Some(sigma2_neg) => params.with_sigma2_neg(sigma2_neg),
+            None => Ok(params),
+        }
     }
 }
 
@@ -239,6 +246,7 @@ mod tests {
             sigma2: 0.4,
             fc_neg: 1.0,
             fs_neg: 1.5,
+            sigma2_neg: None,
             sigma0: None,
             elements: Some(RawElements { w, delta }),
         }

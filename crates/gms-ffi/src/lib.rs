@@ -44,8 +44,8 @@ use core::fmt::{self, Write as _};
 
 use gms_core::{Error, Field, Mode};
 use gms_dyn::{
-    Compensator, HysteresisKind, Level, RawElements, RawParams, RippleTerms, MAX_HARMONICS,
-    MAX_RIPPLES,
+    Compensator, HysteresisKind, Level, PositionForce, RawElements, RawParams, RippleTerms, Terms,
+    MAX_HARMONICS, MAX_RIPPLES,
 };
 use gms_file::{FileError, ModelFile};
 
@@ -104,24 +104,33 @@ pub enum leuven_rt_status {
     /// unknown or missing key, or a value of the wrong type; the error message names the key
     /// path or the cause (docs/data-and-reports.md#model-file).
     LEUVEN_RT_INVALID_FILE = 8,
+    /// A feedforward compensator was given a level or a position force (by a call, or in a
+    /// model file) without the axis's start position: they would be placed from x = 0, out of
+    /// phase with the machine. Call `leuven_rt_compensator_set_position` first, or create from a
+    /// model file with `leuven_rt_compensator_create_from_json_at` / `_from_file_at`. The error
+    /// detail names `x`.
+    LEUVEN_RT_NO_START_POSITION = 9,
 }
 
 use leuven_rt_status::{
     LEUVEN_RT_INCOMPATIBLE_PARAMS, LEUVEN_RT_INVALID_DT, LEUVEN_RT_INVALID_FILE,
     LEUVEN_RT_INVALID_MODE, LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_INVALID_POINTER,
-    LEUVEN_RT_NOT_FINITE_INPUT, LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
+    LEUVEN_RT_NOT_FINITE_INPUT, LEUVEN_RT_NO_START_POSITION, LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
 };
 
 /// Parameters of the modified Leuven model (docs/parameters.md), SI units.
 ///
 /// Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 /// and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
-/// `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+/// `Delta` ignored. `Fc_neg`, `Fs_neg` and `sigma2_neg` of 0 mean "same as `Fc`, `Fs` and
+/// `sigma2`" (so a struct written before `sigma2_neg` existed, zero-filled, keeps its meaning; a
+/// viscous coefficient of exactly 0 for v < 0 beside a non-zero `sigma2` is given in a parameter
+/// file instead).
 ///
 /// Rules (each broken one gives `LEUVEN_RT_INVALID_PARAMETER` and its member's name in
 /// `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
 /// `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
-/// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
+/// `sigma1`, `sigma2` (and `sigma2_neg` when used) finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
 /// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`);
 /// `sum(W)` finite (field `W`, the index of the largest); the sum of the stiffnesses
 /// `W[i] / Delta[i]` finite (field `Delta`, index 0); each `Delta[i]` at least 2^-26 times the
@@ -150,8 +159,10 @@ pub struct leuven_rt_params {
     pub n: f64,
     /// Micro-viscous coefficient [N·s/m].
     pub sigma1: f64,
-    /// Viscous coefficient [N·s/m].
+    /// Viscous coefficient [N·s/m] (for v >= 0 when `sigma2_neg` is given).
     pub sigma2: f64,
+    /// Viscous coefficient for v < 0 [N·s/m]; 0: `sigma2`.
+    pub sigma2_neg: f64,
     /// Stiffness of linear hysteresis [N/m]; 0 with Maxwell-slip elements.
     pub sigma0: f64,
     /// Saturation forces of the elements [N], `elements` values.
@@ -167,9 +178,10 @@ pub struct leuven_rt_params {
 /// index k − 1).
 ///
 /// Rules (`LEUVEN_RT_INVALID_PARAMETER`, with the member's name in `leuven_rt_error.field` and
-/// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and not subnormal;
-/// `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every amplitude finite. `cos` and `sin` may
-/// be null when `harmonics` is 0.
+/// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and at least 2^20 ulps
+/// of max(|middle| + `half_stroke`, 1), the largest position the level covers (a finer period's
+/// phase cannot be resolved there); `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every
+/// amplitude finite. `cos` and `sin` may be null when `harmonics` is 0.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct leuven_rt_ripple {
@@ -190,10 +202,14 @@ pub struct leuven_rt_ripple {
 ///
 /// Rules (`LEUVEN_RT_INVALID_PARAMETER`, the member's name in `leuven_rt_error.field`):
 /// `middle` and `trend` finite (`index` says which `trend` entry); `half_stroke` finite, > 0
-/// and not subnormal; `ripple_count` at most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in
-/// `leuven_rt_ripple`; and |t1| + |t2| + the sum of every |amplitude| below 1, so that the factor
-/// is positive everywhere (field "level"). `ripples` may be null when `ripple_count` is 0. A
-/// level of zeros with no ripples is the flat level: the plain model's output, bit for bit.
+/// and at least 2^20 ulps of max(|middle| + `half_stroke`, 1) (field `middle` when the middle is
+/// so far from 0 that a half stroke resolved about 0 is not resolved there); `ripple_count` at
+/// most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in `leuven_rt_ripple`; and |t1| + |t2| + the sum
+/// of every |amplitude| below 1, so that the factor is positive everywhere (field "level").
+/// `ripples` may be null when `ripple_count` is 0. A level of zeros with no ripples is the flat
+/// level: the plain model's output, bit for bit.
+///
+/// The same struct describes a position force (`leuven_rt_position_force`).
 ///
 /// Ownership: copied while the call runs.
 #[repr(C)]
@@ -210,6 +226,14 @@ pub struct leuven_rt_level {
     /// Number of ripples, 0 to `LEUVEN_RT_MAX_RIPPLES`.
     pub ripple_count: usize,
 }
+
+/// A force that depends on the position alone (docs/model.md#position-dependent-level):
+/// cogging, gear mesh, a gravity-like torque along the stroke, added to the output in both
+/// directions of motion and not scaled by the level. Its shape is a level's,
+/// r(x) = t1·p + t2·(1.5·p² − 0.5) + Σ ripples, but in force units [N or N·m] (the trend and
+/// every amplitude), with any finite values: the rules of `leuven_rt_level` without the one on
+/// the sum of amplitudes. Zeros with no ripples is no position force.
+pub type leuven_rt_position_force = leuven_rt_level;
 
 /// Why a call that takes one was refused. Every function with an `error` argument writes all of
 /// it on every return when `error` is not null, whatever the status: on `LEUVEN_RT_OK`,
@@ -251,6 +275,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
         8 => c"the parameter or model file cannot be read, is not JSON, has another format or version, or a repeated, unknown, missing or mistyped key",
+        9 => c"a feedforward compensator needs the axis's start position before a level or a position force",
         _ => c"unknown status",
     };
     message.as_ptr()
@@ -278,7 +303,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
         let mode = checked_mode(mode)?;
         // SAFETY: as above, for `params` and the arrays it points to.
         let raw = unsafe { raw_params(params) }.ok_or_else(|| Refusal::pointer("params"))?;
-        build(&raw, dt, mode, &Level::none(), out)
+        build(&raw, dt, mode, &Terms::default(), out)
     });
     finish(created, error)
 }
@@ -290,10 +315,12 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
 /// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
 /// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
 /// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
-/// `friction` and `level` (a model file with a level in feedforward mode needs the start
-/// position, `leuven_rt_compensator_set_position`); `units`, `measurement`, `reconstruction` and
+/// `friction`, `level` and `position_force`; `units`, `measurement`, `reconstruction` and
 /// `report` are checked but not the compensator's. A plain parameter file reads as a model file
-/// of that friction, its keys named `friction.<key>`.
+/// of that friction, its keys named `friction.<key>`. A model file with a level or a position
+/// force in feedforward mode needs the axis's start position: it gives
+/// `LEUVEN_RT_NO_START_POSITION` here, and is read with
+/// `leuven_rt_compensator_create_from_json_at`.
 ///
 /// Text that is not JSON, a `format` or `version` this library does not read (a later version
 /// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
@@ -325,7 +352,41 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
         // alignment.
         let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
         let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, out)
+        from_file(&file, dt, mode, None, out)
+    });
+    finish(created, error)
+}
+
+/// `leuven_rt_compensator_create_from_json` with the axis's start position `x` [m or rad]:
+/// where a feedforward compensator places the model file's level from (it then integrates the
+/// desired velocity, or takes the positions of `leuven_rt_compensator_step_trajectory`).
+/// Observer mode takes the position from its input. A non-finite `x` gives
+/// `LEUVEN_RT_NOT_FINITE_INPUT` (field `x`).
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_json`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_json_at(
+    json: *const c_char,
+    len: usize,
+    dt: f64,
+    mode: i32,
+    x: f64,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if json.is_null() || len > isize::MAX as usize {
+            return Err(Refusal::pointer("json"));
+        }
+        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
+        // alignment.
+        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
     });
     finish(created, error)
 }
@@ -364,7 +425,44 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
             )
         })?);
         let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, out)
+        from_file(&file, dt, mode, None, out)
+    });
+    finish(created, error)
+}
+
+/// `leuven_rt_compensator_create_from_file` with the axis's start position `x`, as
+/// `leuven_rt_compensator_create_from_json_at`.
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_file`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_file_at(
+    path: *const c_char,
+    dt: f64,
+    mode: i32,
+    x: f64,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if path.is_null() {
+            return Err(Refusal::pointer("path"));
+        }
+        // SAFETY: non-null and NUL-terminated by the caller's contract.
+        let path = unsafe { CStr::from_ptr(path) };
+        let path = std::path::Path::new(path.to_str().map_err(|_| {
+            Refusal::new(
+                LEUVEN_RT_INVALID_FILE,
+                c"",
+                0,
+                format_args!("the path is not UTF-8"),
+            )
+        })?);
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
     });
     finish(created, error)
 }
@@ -407,13 +505,53 @@ pub unsafe extern "C" fn leuven_rt_compensator_step(
         *force = 0.0;
         return LEUVEN_RT_INVALID_POINTER;
     };
-    match compensator.compensator.step(input) {
+    let result = compensator.compensator.step(input);
+    stepped(&compensator.compensator, result, force)
+}
+
+/// One sample of a planned trajectory: the desired velocity `v` [m/s] drives the model and the
+/// desired position `x` [m] places the level and the position force, so that a loop that knows
+/// its position does not integrate the velocity; the friction force is written to `*force`. In
+/// feedforward mode `x` becomes the compensator's position; in observer mode (a measured
+/// velocity beside the measured position) the previous position of the next step. Statuses and
+/// `*force` as in `leuven_rt_compensator_step` (a non-finite `v` or `x` gives
+/// `LEUVEN_RT_NOT_FINITE_INPUT`).
+///
+/// # Safety
+/// `compensator` must be null or a live handle; `force` null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_step_trajectory(
+    compensator: *mut leuven_rt_compensator,
+    v: f64,
+    x: f64,
+    force: *mut f64,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, force) = unsafe { (checked_mut(compensator), checked_mut(force)) };
+    let Some(force) = force else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let Some(compensator) = compensator else {
+        *force = 0.0;
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let result = compensator.compensator.step_trajectory(v, x);
+    stepped(&compensator.compensator, result, force)
+}
+
+/// The status of a step, with the force (or the last good one) written.
+fn stepped(
+    compensator: &Compensator,
+    result: Result<f64, Error>,
+    force: &mut f64,
+) -> leuven_rt_status {
+    match result {
         Ok(value) => {
             *force = value;
             LEUVEN_RT_OK
         }
         Err(error) => {
-            *force = compensator.compensator.output();
+            *force = compensator.output();
             match error {
                 Error::NotFinite { .. } | Error::VelocityNotFinite { .. } => {
                     LEUVEN_RT_NOT_FINITE_INPUT
@@ -473,8 +611,10 @@ pub unsafe extern "C" fn leuven_rt_compensator_reset(
 /// Gives the compensator a position-dependent level (see `leuven_rt_level`), replacing the one it
 /// had; the model state carries over and the next step's output uses the new level. In
 /// feedforward mode the level is evaluated at the position integrated from the desired
-/// velocity: give the axis's start position with `leuven_rt_compensator_set_position`.
-/// Does not allocate; `error`, if not null, is written on every return.
+/// velocity (or given to `leuven_rt_compensator_step_trajectory`), from the axis's start
+/// position: without one (`leuven_rt_compensator_set_position`) a level that is not flat gives
+/// `LEUVEN_RT_NO_START_POSITION`. Does not allocate; `error`, if not null, is written on every
+/// return.
 ///
 /// # Safety
 /// `compensator` null or live; `level` null or valid, with `level->ripples` null or pointing to
@@ -492,17 +632,46 @@ pub unsafe extern "C" fn leuven_rt_compensator_set_level(
         .ok_or_else(|| Refusal::pointer("compensator"))
         .and_then(|compensator| {
             // SAFETY: as above, for `level` and the arrays it points to.
-            let level = unsafe { c_level(level) }?;
-            compensator.compensator.set_level(&level);
-            Ok(())
+            let level = unsafe { c_series(level, "level", Level::new) }?;
+            compensator
+                .compensator
+                .set_level(&level)
+                .map_err(|reason| Refusal::from_dyn(reason.into()))
         });
     finish(set, error)
 }
 
-/// Sets the position [m or rad] from which feedforward mode integrates the desired velocity
-/// (x ← x + v·dt each step) to evaluate the level; 0 until set. Observer mode takes the
-/// position from its input and does not read it. A non-finite `x` gives
-/// `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
+/// Gives the compensator a position force (see `leuven_rt_position_force`), replacing the one it
+/// had, as `leuven_rt_compensator_set_level` does with a level: the next step's output adds
+/// r(x). Does not allocate; `error`, if not null, is written on every return.
+///
+/// # Safety
+/// As `leuven_rt_compensator_set_level`, for `force`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_set_position_force(
+    compensator: *mut leuven_rt_compensator,
+    force: *const leuven_rt_position_force,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, error) = unsafe { (checked_mut(compensator), checked_mut(error)) };
+    let set = compensator
+        .ok_or_else(|| Refusal::pointer("compensator"))
+        .and_then(|compensator| {
+            // SAFETY: as above, for `force` and the arrays it points to.
+            let force = unsafe { c_series(force, "force", PositionForce::new) }?;
+            compensator
+                .compensator
+                .set_position_force(&force)
+                .map_err(|reason| Refusal::from_dyn(reason.into()))
+        });
+    finish(set, error)
+}
+
+/// Sets the axis's position [m or rad], from which feedforward mode integrates the desired
+/// velocity (x ← x + v·dt each step) to place the level and the position force; unknown until
+/// set, and needed before either is given. Observer mode takes the position from its input and
+/// does not read it. A non-finite `x` gives `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
 ///
 /// # Safety
 /// `compensator` must be null or a live handle.
@@ -586,7 +755,8 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
     Some(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// The caller's level, validated by gms-core; a null or misaligned pointer (the level, its
+/// The caller's level or position force (`name`), validated by gms-core through `build`
+/// ([`Level::new`] or [`PositionForce::new`]); a null or misaligned pointer (the struct, its
 /// ripples, or a ripple's amplitudes) is refused.
 ///
 /// Counts beyond the maxima are refused before any array is read past them.
@@ -594,14 +764,18 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
 /// # Safety
 /// As [`checked`] for `level`; its `ripples` must point to `ripple_count` ripples and each
 /// ripple's `cos` and `sin` to `harmonics` doubles (read only up to the maxima + 1).
-unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
+unsafe fn c_series<T>(
+    level: *const leuven_rt_level,
+    name: &str,
+    build: impl FnOnce(f64, f64, [f64; 2], &[RippleTerms<'_>]) -> Result<T, Error>,
+) -> Result<T, Refusal> {
     // SAFETY: passed on from the caller's contract.
-    let level = unsafe { checked(level) }.ok_or_else(|| Refusal::pointer("level"))?;
+    let level = unsafe { checked(level) }.ok_or_else(|| Refusal::pointer(name))?;
     let count = level.ripple_count.min(MAX_RIPPLES + 1);
     let c_ripples: &[leuven_rt_ripple] = if count == 0 {
         &[]
     } else if level.ripples.is_null() || !level.ripples.is_aligned() {
-        return Err(Refusal::pointer("level->ripples"));
+        return Err(Refusal::pointer(format_args!("{name}->ripples")));
     } else {
         // SAFETY: non-null and aligned; `ripple_count` valid ripples by the caller's contract,
         // of which at most MAX_RIPPLES + 1 are read.
@@ -617,7 +791,9 @@ unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
         // SAFETY: passed on from the caller's contract.
         let (cos, sin) = unsafe { (array(ripple.cos, harmonics), array(ripple.sin, harmonics)) };
         let (Some(cos), Some(sin)) = (cos, sin) else {
-            return Err(Refusal::pointer("level->ripples[i].cos or .sin"));
+            return Err(Refusal::pointer(format_args!(
+                "{name}->ripples[i].cos or .sin"
+            )));
         };
         *slot = RippleTerms {
             period: ripple.period,
@@ -625,7 +801,7 @@ unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
             sin,
         };
     }
-    Level::new(
+    build(
         level.middle,
         level.half_stroke,
         level.trend,
@@ -665,6 +841,7 @@ unsafe fn raw_params<'a>(params: *const leuven_rt_params) -> Option<RawParams<'a
         sigma2: params.sigma2,
         fc_neg: or(params.Fc_neg, params.Fc),
         fs_neg: or(params.Fs_neg, params.Fs),
+        sigma2_neg: (params.sigma2_neg != 0.0).then_some(params.sigma2_neg),
         sigma0: (linear || params.sigma0 != 0.0).then_some(params.sigma0),
         elements: (!linear).then_some(RawElements { w, delta }),
     })
@@ -698,7 +875,7 @@ impl Refusal {
     }
 
     /// A null or misaligned pointer argument.
-    fn pointer(argument: &str) -> Self {
+    fn pointer(argument: impl fmt::Display) -> Self {
         Refusal::new(
             LEUVEN_RT_INVALID_POINTER,
             c"",
@@ -731,9 +908,9 @@ impl Refusal {
             Refused::Core(Error::NotPositive {
                 field: Field::dt, ..
             }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
-            Refused::Core(Error::Element { field, index, .. }) => {
-                (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
-            }
+            Refused::Core(
+                Error::Element { field, index, .. } | Error::PhaseUnresolved { field, index, .. },
+            ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index),
             Refused::Core(
                 Error::NotPositive { field, .. }
                 | Error::Negative { field, .. }
@@ -761,6 +938,12 @@ impl Refusal {
                 (LEUVEN_RT_INVALID_PARAMETER, field_name(field), ripple)
             }
             Refused::Core(Error::LevelTooDeep { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"level", 0),
+            Refused::Core(Error::Missing { field }) => {
+                (LEUVEN_RT_NO_START_POSITION, field_name(field), 0)
+            }
+            Refused::Core(Error::NotFiniteValue {
+                field: Field::x, ..
+            }) => (LEUVEN_RT_NOT_FINITE_INPUT, c"x", 0),
             Refused::Core(Error::ForceSumOverflow { index, .. }) => {
                 (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
             }
@@ -863,35 +1046,41 @@ fn checked_mode(mode: i32) -> Result<Mode, Refusal> {
     }
 }
 
-/// Validates `raw`, builds the compensator and writes its handle to `*out`.
+/// Validates `raw`, builds the compensator with `terms` and writes its handle to `*out`.
 fn build(
     raw: &RawParams<'_>,
     dt: f64,
     mode: Mode,
-    level: &Level,
+    terms: &Terms,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
     let compensator = raw
         .validate()
-        .and_then(|set| Compensator::with_level(&set, dt, mode, level))
+        .and_then(|set| Compensator::with_terms(&set, dt, mode, terms))
         .map_err(Refusal::from_dyn)?;
     *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
     Ok(())
 }
 
-/// Builds the compensator from a read model file (or parameter file): every value validated,
-/// each refusal naming its key.
+/// Builds the compensator from a read model file (or parameter file), starting at `start` if
+/// given: every value validated, each refusal naming its key.
 fn from_file(
     file: &ModelFile,
     dt: f64,
     mode: Mode,
+    start: Option<f64>,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
     let model = file
         .validate()
         .map_err(|reason| Refusal::from_file(&reason))?;
-    let compensator = Compensator::with_level(&model.params, dt, mode, &model.level)
-        .map_err(Refusal::from_dyn)?;
+    let terms = Terms {
+        start,
+        level: model.level,
+        position_force: model.position_force,
+    };
+    let compensator =
+        Compensator::with_terms(&model.params, dt, mode, &terms).map_err(Refusal::from_dyn)?;
     *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
     Ok(())
 }
@@ -911,7 +1100,10 @@ fn field_name(field: Field) -> &'static CStr {
         Field::Delta => c"Delta",
         Field::Fc_neg => c"Fc_neg",
         Field::Fs_neg => c"Fs_neg",
+        Field::sigma2_neg => c"sigma2_neg",
         Field::dt => c"dt",
+        Field::x => c"x",
+        Field::period => c"period",
         Field::middle => c"middle",
         Field::half_stroke => c"half_stroke",
         Field::trend => c"trend",

@@ -2,7 +2,9 @@
 //! layer that owns its rule, and each refusal given the key path of the value.
 
 use gms_core::{Error as Core, Field};
-use gms_dyn::{Level, ParameterSet, RawElements, RawParams, RippleTerms, MAX_HARMONICS};
+use gms_dyn::{
+    Level, ParameterSet, PositionForce, RawElements, RawParams, RippleTerms, MAX_HARMONICS,
+};
 
 use crate::error::FileError;
 use crate::file::{Friction, ModelFile, PositionTerms};
@@ -15,6 +17,8 @@ pub struct Model {
     /// The position-dependent level, validated by gms-core; the flat level when the file has
     /// none.
     pub level: Level,
+    /// The position force, validated by gms-core; none when the file has none.
+    pub position_force: PositionForce,
 }
 
 impl Friction {
@@ -49,6 +53,7 @@ impl Friction {
             sigma2: self.sigma2,
             fc_neg: self.Fc_neg.unwrap_or(self.Fc),
             fs_neg: self.Fs_neg.unwrap_or(self.Fs),
+            sigma2_neg: self.sigma2_neg,
             sigma0: self.sigma0,
             elements,
         })
@@ -58,29 +63,10 @@ impl Friction {
     /// returns the validated set; a refusal names the key as a parameter file has it (`W[2]`;
     /// [`ModelFile::validate`] names it under `friction`).
     pub fn validate(&self) -> Result<ParameterSet, FileError> {
-        sigma2_neg_adapter(self)?;
         self.raw()?.validate().map_err(|error| FileError::Rule {
             key: friction_key(&error),
             error,
         })
-    }
-}
-
-// ADAPTER (until branch `core-terms` gives gms-dyn's RawParams a `sigma2_neg`): a viscous
-// coefficient for v < 0 other than `sigma2` cannot be built yet, so it is refused rather than
-// dropped; one equal to `sigma2` is the symmetric model.
-fn sigma2_neg_adapter(friction: &Friction) -> Result<(), FileError> {
-    match friction.sigma2_neg {
-        Some(value) if value != friction.sigma2 => Err(FileError::Invalid {
-            key: "sigma2_neg".to_owned(),
-            message: format!(
-                "a viscous coefficient for v < 0 other than `sigma2` = {} is not supported by \
-                 this build, got {}",
-                gms_core::Shown(friction.sigma2),
-                gms_core::Shown(value)
-            ),
-        }),
-        _ => Ok(()),
     }
 }
 
@@ -125,12 +111,25 @@ impl PositionTerms {
             }
         })
     }
+
+    /// The position force of these terms, validated by gms-core's [`PositionForce::new`]; a
+    /// refusal names the key under `position_force`.
+    pub fn position_force(&self) -> Result<PositionForce, FileError> {
+        self.check_harmonics("position_force")?;
+        PositionForce::new(self.middle, self.half_stroke, self.trend, &self.terms()).map_err(
+            |error| FileError::Rule {
+                key: terms_key("position_force", &error),
+                error: error.into(),
+            },
+        )
+    }
 }
 
 impl ModelFile {
     /// Checks every value and builds the validated objects: the friction by gms-dyn's
     /// [`RawParams::validate`], the level by gms-core's [`Level::new`], and the rules of the file
     /// itself (finite measurement terms, a finite cutoff > 0, at least one harmonic per ripple).
+    /// The position force is validated by gms-core's [`PositionForce::new`].
     /// The first refusal names the key.
     pub fn validate(&self) -> Result<Model, FileError> {
         let params = self
@@ -141,9 +140,10 @@ impl ModelFile {
             Some(terms) => terms.level()?,
             None => Level::none(),
         };
-        if let Some(terms) = &self.position_force {
-            position_force_adapter(terms)?;
-        }
+        let position_force = match &self.position_force {
+            Some(terms) => terms.position_force()?,
+            None => PositionForce::none(),
+        };
         for (key, value) in [
             ("measurement.offset", self.measurement.offset),
             ("measurement.inertia", self.measurement.inertia),
@@ -166,66 +166,12 @@ impl ModelFile {
                 });
             }
         }
-        Ok(Model { params, level })
+        Ok(Model {
+            params,
+            level,
+            position_force,
+        })
     }
-}
-
-// ADAPTER (until branch `core-terms` gives gms-core a `PositionForce`): the position force is
-// checked with the level's rules that concern its shape (finite terms, a period > 0, matching
-// harmonics), which are the same; its amplitudes are forces, so the level's depth rule (their
-// sum below 1) does not apply.
-fn position_force_adapter(terms: &PositionTerms) -> Result<(), FileError> {
-    terms.check_harmonics("position_force")?;
-    let key = |error: &Core| terms_key("position_force", error);
-    let refuse = |error: Core| FileError::Rule {
-        key: key(&error),
-        error: error.into(),
-    };
-    // Scaled so that the depth rule always holds: only the shape rules can refuse.
-    let largest = terms
-        .trend
-        .iter()
-        .chain(
-            terms
-                .ripples
-                .iter()
-                .flat_map(|r| r.cos.iter().chain(&r.sin)),
-        )
-        .fold(0.0_f64, |largest, value| largest.max(value.abs()));
-    let count = 2 + terms
-        .ripples
-        .iter()
-        .map(|r| r.cos.len() + r.sin.len())
-        .sum::<usize>();
-    let scale = if largest.is_finite() && largest > 0.0 {
-        1.0 / (largest * 2.0 * count as f64)
-    } else {
-        1.0
-    };
-    let scaled: Vec<(Vec<f64>, Vec<f64>)> = terms
-        .ripples
-        .iter()
-        .map(|r| {
-            (
-                r.cos.iter().map(|c| c * scale).collect(),
-                r.sin.iter().map(|s| s * scale).collect(),
-            )
-        })
-        .collect();
-    let ripples: Vec<RippleTerms<'_>> = terms
-        .ripples
-        .iter()
-        .zip(&scaled)
-        .map(|(ripple, (cos, sin))| RippleTerms {
-            period: ripple.period,
-            cos,
-            sin,
-        })
-        .collect();
-    let trend = [terms.trend[0] * scale, terms.trend[1] * scale];
-    Level::new(terms.middle, terms.half_stroke, trend, &ripples)
-        .map(|_| ())
-        .map_err(refuse)
 }
 
 /// The key path of a refused friction parameter, in a parameter file.
@@ -266,7 +212,13 @@ fn terms_key(prefix: &str, error: &Core) -> String {
             ..
         } => format!("trend[{index}]"),
         Core::TooManyRipples { .. } => "ripples".to_owned(),
-        Core::RipplePeriod { ripple, .. } => format!("ripples[{ripple}].period"),
+        Core::RipplePeriod { ripple, .. }
+        | Core::PhaseUnresolved {
+            field: Field::period,
+            index: ripple,
+            ..
+        } => format!("ripples[{ripple}].period"),
+        Core::PhaseUnresolved { field, .. } => field.key().to_owned(),
         Core::HarmonicLengths { ripple, .. } | Core::TooManyHarmonics { ripple, .. } => {
             format!("ripples[{ripple}]")
         }

@@ -42,6 +42,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(file::parameter_file_to_json, m)?)?;
     m.add_class::<params::CoreParams>()?;
     m.add_class::<level::CoreLevel>()?;
+    m.add_class::<level::CorePositionForce>()?;
     m.add("MAX_RIPPLES", gms_dyn::MAX_RIPPLES)?;
     m.add("MAX_HARMONICS", gms_dyn::MAX_HARMONICS)?;
     m.add_class::<model::Engine>()?;
