@@ -123,7 +123,9 @@ def model_forces(model: ModelFile, x: FloatArray, a: FloatArray, dt: float) -> t
     docs/model.md#position-dependent-level: the run a compensator in observer mode makes over the
     same positions) and the model's whole force, friction plus the measurement terms at the
     acceleration ``a``."""
-    friction = simulate_position(model.friction, x, dt, level=model.level, position_force=model.position_force)
+    friction = simulate_position(
+        model.friction, x, dt, level=model.level, position_force=model.position_force
+    )
     return friction, friction + model.measurement_force(a)
 
 
