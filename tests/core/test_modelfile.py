@@ -14,9 +14,9 @@ import pytest
 
 import leuven_rt as lr
 from conftest import LUGRE, MAXWELL
-from leuven_rt import ModelFile, Params, PositionLevel, Ripple
+from leuven_rt import ModelFile, Params, PositionForce, PositionLevel, Ripple
 from leuven_rt.errors import ModelFileError, OutputError, ParameterError
-from leuven_rt.modelfile import PositionForce, Reconstruction
+from leuven_rt.modelfile import Reconstruction
 
 LEVEL = PositionLevel(
     middle=0.0,
@@ -192,7 +192,7 @@ def test_bad_python_values_are_refused() -> None:
         ({"level": {"half_stroke": 0.0}}, "value", "level.half_stroke"),
         ({"level": {"slope": 1.0}}, "shape", "level.slope"),
         ({"reconstruction": Reconstruction("position", cutoff=-1.0)}, "value", "reconstruction.cutoff"),
-        ({"position_force": PositionForce(ripples=(Ripple(0.0, (1.0,), (0.0,)),))}, "value",
+        ({"position_force": {"ripples": [{"period": 0.0, "cos": [1.0], "sin": [0.0]}]}}, "value",
          "position_force.ripples[0].period"),
         ({"friction": {**MAXWELL, "Fs": 0.1}}, "value", "friction.Fs"),
     ]:  # fmt: skip
