@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._typing import FloatArray
 from .errors import ParameterError
-from .level import PositionForce, PositionLevel, Ripple
+from .level import PositionForce, PositionLevel
 from .params import Params, _real
 from .units import Units
 
@@ -66,16 +66,6 @@ class Reconstruction:
             )
         if self.cutoff is not None:
             object.__setattr__(self, "cutoff", _real("reconstruction.cutoff", self.cutoff))
-
-
-def _terms_fields(mapping: Mapping[str, Any]) -> dict[str, Any]:
-    """The fields of a level or position force from its (validated) JSON object."""
-    return {
-        "middle": mapping["middle"],
-        "half_stroke": mapping["half_stroke"],
-        "trend": tuple(mapping["trend"]),
-        "ripples": tuple(Ripple(r["period"], tuple(r["cos"]), tuple(r["sin"])) for r in mapping["ripples"]),
-    }
 
 
 def _object(value: Any, kind: type) -> Any:
@@ -240,8 +230,8 @@ def _fields(checked: Mapping[str, Any], friction: Params | Mapping[str, Any] | N
     reconstruction = checked["reconstruction"]
     return {
         "friction": friction,
-        "level": None if level is None else PositionLevel(**_terms_fields(level)),
-        "position_force": None if position_force is None else PositionForce(**_terms_fields(position_force)),
+        "level": None if level is None else PositionLevel.from_dict(level),
+        "position_force": None if position_force is None else PositionForce.from_dict(position_force),
         "offset": float(checked["measurement"]["offset"]),
         "inertia": float(checked["measurement"]["inertia"]),
         "units": checked["units"],

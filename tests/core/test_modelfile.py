@@ -14,9 +14,8 @@ import pytest
 
 import leuven_rt as lr
 from conftest import LUGRE, MAXWELL
-from leuven_rt import ModelFile, Params, PositionForce, PositionLevel, Ripple
+from leuven_rt import ModelFile, Params, PositionForce, PositionLevel, Reconstruction, Ripple
 from leuven_rt.errors import ModelFileError, OutputError, ParameterError
-from leuven_rt.modelfile import Reconstruction
 
 LEVEL = PositionLevel(
     middle=0.0,
@@ -223,4 +222,7 @@ def test_save_follows_the_output_policy(tmp_path: Path) -> None:
 
 def test_the_public_names() -> None:
     assert lr.ModelFile is ModelFile and lr.PositionLevel is PositionLevel and lr.Ripple is Ripple
-    assert {"ModelFile", "PositionLevel", "Ripple", "predict", "Prediction"} <= set(lr.__all__)
+    assert lr.Reconstruction is Reconstruction and lr.PositionForce is PositionForce
+    assert {"ModelFile", "PositionLevel", "Ripple", "Reconstruction", "predict", "Prediction"} <= set(
+        lr.__all__
+    )
