@@ -47,8 +47,8 @@ class InputError(ValueError): ...
 class DivergenceError(ValueError): ...
 
 class ModelFileError(ParameterError):
-    kind: Literal["read", "syntax", "format", "shape", "value"]
-    key: str | None
+    kind: str
+    field: str | None
     line: int | None
     column: int | None
 

@@ -2,7 +2,7 @@
 
 The three the Rust core raises (:class:`ParameterError`, :class:`InputError`,
 :class:`DivergenceError`) and the one of the file reader (:class:`ModelFileError`, a
-:class:`ParameterError` with the refusal's ``kind``, ``key``, ``line`` and ``column``) are defined
+:class:`ParameterError` with the refusal's ``kind``, ``field``, ``line`` and ``column``) are defined
 in the extension, so that the core and the Python modules
 raise the same classes; the rest are Python-only and subclass them or ``ValueError``, so that
 ``except ValueError`` (or ``except InputError`` for bad data) catches every refusal.

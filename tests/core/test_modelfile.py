@@ -134,14 +134,14 @@ def test_load_names_the_file(tmp_path: Path) -> None:
     path.write_text(text, encoding="utf-8")
     with pytest.raises(ModelFileError, match=rf"^{path}: `version` is 3: .*upgrade leuven-rt") as caught:
         ModelFile.load(path)
-    assert (caught.value.kind, caught.value.key) == ("format", "version")
+    assert (caught.value.kind, caught.value.field) == ("invalid_choice", "version")
     with pytest.raises(ModelFileError, match=r"cannot read .*missing\.json") as caught:
         ModelFile.load(tmp_path / "missing.json")
-    assert (caught.value.kind, caught.value.key) == ("read", None)
+    assert (caught.value.kind, caught.value.field) == ("unreadable_file", None)
     (tmp_path / "latin.json").write_bytes('{"é": 1}'.encode("latin-1"))
     with pytest.raises(ModelFileError, match=r"not UTF-8 text") as caught:
         ModelFile.load(tmp_path / "latin.json")
-    assert caught.value.kind == "read"
+    assert caught.value.kind == "unreadable_file"
     with pytest.raises(ModelFileError, match=r"not a regular file"):
         ModelFile.load(tmp_path)
 
@@ -162,22 +162,22 @@ def test_from_dict_refuses_what_json_cannot_hold() -> None:
     """from_dict reads with the rules of the text: a NaN, a non-text key or a Python object is
     refused naming the key, as its JSON text would be."""
     mapping = full_model().to_dict()
-    for path, value, key in [
-        (("measurement", "offset"), math.nan, "measurement.offset"),
-        (("report", "rms"), math.inf, "report.rms"),
-        (("report", "when"), object(), "report.when"),
-        (("friction", "Fc"), 10**400, "friction.Fc"),
+    for path, value, kind, key in [
+        (("measurement", "offset"), math.nan, "out_of_range", "measurement.offset"),
+        (("report", "rms"), math.inf, "out_of_range", "report.rms"),
+        (("report", "when"), object(), "wrong_type", "report.when"),
+        (("friction", "Fc"), 10**400, "out_of_range", "friction.Fc"),
     ]:
         changed = json.loads(json.dumps(mapping))
         changed[path[0]][path[1]] = value
         with pytest.raises(ModelFileError) as caught:
             ModelFile.from_dict(changed)
-        assert (caught.value.kind, caught.value.key) == ("shape", key), str(caught.value)
+        assert (caught.value.kind, caught.value.field) == (kind, key), str(caught.value)
     changed = json.loads(json.dumps(mapping))
     changed["report"] = {1: 2}
     with pytest.raises(ModelFileError, match=r"keys must be text") as caught:
         ModelFile.from_dict(changed)
-    assert caught.value.key == "report"
+    assert (caught.value.kind, caught.value.field) == ("wrong_type", "report")
 
 
 def test_bad_python_values_are_refused() -> None:
@@ -185,19 +185,20 @@ def test_bad_python_values_are_refused() -> None:
     with pytest.raises(ParameterError, match=r"`friction` must be a leuven_rt.Params or a mapping"):
         ModelFile(friction=3)  # type: ignore[arg-type]
     for changes, kind, key in [
-        ({"offset": "a"}, "shape", "measurement.offset"),
-        ({"inertia": math.nan}, "shape", "measurement.inertia"),
-        ({"units": "deg"}, "shape", "units"),
-        ({"level": {"half_stroke": 0.0}}, "value", "level.half_stroke"),
-        ({"level": {"slope": 1.0}}, "shape", "level.slope"),
-        ({"reconstruction": Reconstruction("position", cutoff=-1.0)}, "value", "reconstruction.cutoff"),
-        ({"position_force": {"ripples": [{"period": 0.0, "cos": [1.0], "sin": [0.0]}]}}, "value",
+        ({"offset": "a"}, "wrong_type", "measurement.offset"),
+        ({"inertia": math.nan}, "out_of_range", "measurement.inertia"),
+        ({"units": "deg"}, "wrong_type", "units"),
+        ({"level": {"half_stroke": 0.0}}, "not_positive", "level.half_stroke"),
+        ({"level": {"slope": 1.0}}, "unknown_key", "level.slope"),
+        ({"reconstruction": Reconstruction("position", cutoff=-1.0)}, "not_positive",
+         "reconstruction.cutoff"),
+        ({"position_force": {"ripples": [{"period": 0.0, "cos": [1.0], "sin": [0.0]}]}}, "ripple_period",
          "position_force.ripples[0].period"),
-        ({"friction": {**MAXWELL, "Fs": 0.1}}, "value", "friction.Fs"),
+        ({"friction": {**MAXWELL, "Fs": 0.1}}, "static_below_coulomb", "friction.Fs"),
     ]:  # fmt: skip
         with pytest.raises(ModelFileError) as caught:
             ModelFile(**{"friction": Params(**MAXWELL), **changes})
-        assert (caught.value.kind, caught.value.key) == (kind, key), str(caught.value)
+        assert (caught.value.kind, caught.value.field) == (kind, key), str(caught.value)
     with pytest.raises(ParameterError, match=r"`report.when` must hold JSON values only, got object"):
         ModelFile(friction=Params(**MAXWELL), report={"when": object()})
     with pytest.raises(ParameterError, match=r"`report` must be a JSON object or None"):

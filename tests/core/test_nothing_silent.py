@@ -95,12 +95,12 @@ def test_huge_integers_are_parameter_and_input_errors() -> None:
 @pytest.mark.parametrize(
     ("text", "kind", "key"),
     [
-        pytest.param("[" * 100_000 + "]" * 100_000, "syntax", None, id="nested"),
-        pytest.param(json.dumps({**MAXWELL, "Fc": 10**400}), "shape", "Fc", id="huge-int"),
-        pytest.param(json.dumps({**MAXWELL, "W": [10**400] * 4}), "shape", "W[0]", id="huge-W"),
-        pytest.param('{"Fc": ' + "9" * 5000 + "}", "shape", "Fc", id="too-many-digits"),
-        pytest.param("[1, 2]", "shape", None, id="list"),
-        pytest.param(json.dumps({**MAXWELL, "Fc": "1"}), "shape", "Fc", id="text-value"),
+        pytest.param("[" * 100_000 + "]" * 100_000, "not_json", None, id="nested"),
+        pytest.param(json.dumps({**MAXWELL, "Fc": 10**400}), "out_of_range", "Fc", id="huge-int"),
+        pytest.param(json.dumps({**MAXWELL, "W": [10**400] * 4}), "out_of_range", "W[0]", id="huge-W"),
+        pytest.param('{"Fc": ' + "9" * 5000 + "}", "out_of_range", "Fc", id="too-many-digits"),
+        pytest.param("[1, 2]", "wrong_type", None, id="list"),
+        pytest.param(json.dumps({**MAXWELL, "Fc": "1"}), "wrong_type", "Fc", id="text-value"),
     ],
 )
 def test_parameter_json_failures_are_parameter_errors(text: str, kind: str, key: str | None) -> None:
@@ -109,7 +109,7 @@ def test_parameter_json_failures_are_parameter_errors(text: str, kind: str, key:
     with pytest.raises(ModelFileError) as caught:
         lr.Params.from_json(text)
     assert isinstance(caught.value, ParameterError)
-    assert (caught.value.kind, caught.value.key) == (kind, key), str(caught.value)
+    assert (caught.value.kind, caught.value.field) == (kind, key), str(caught.value)
 
 
 def test_a_parameter_file_that_is_not_utf8_is_a_parameter_error(tmp_path: Path) -> None:

@@ -34,6 +34,39 @@ impl ErrorKind {
     }
 }
 
+/// What is wrong with a key or its value, for [`FileError::Shape`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Problem {
+    /// A key the format does not have there.
+    UnknownKey,
+    /// A required key is missing.
+    MissingKey,
+    /// A key is given twice in the same object.
+    Repeated,
+    /// A value of the wrong type (a string for a number, `null` where null is not allowed, an
+    /// array for an object, a string that is not one of the choices).
+    WrongType,
+    /// An array of the wrong length (`trend`).
+    WrongLength,
+    /// A number beyond the f64 range, or (from a binding's object) not finite.
+    OutOfRange,
+}
+
+impl Problem {
+    /// The name of the problem, as the bindings give it (`"unknown_key"`, `"missing_key"`,
+    /// `"repeated"`, `"wrong_type"`, `"wrong_length"`, `"out_of_range"`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Problem::UnknownKey => "unknown_key",
+            Problem::MissingKey => "missing_key",
+            Problem::Repeated => "repeated",
+            Problem::WrongType => "wrong_type",
+            Problem::WrongLength => "wrong_length",
+            Problem::OutOfRange => "out_of_range",
+        }
+    }
+}
+
 /// Why a model file or a parameter file was refused; [`Display`](fmt::Display) writes the whole
 /// message, with the key path (`level.ripples[0].period`, `friction.W[2]`) where there is one.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,7 +111,9 @@ pub enum FileError {
     Shape {
         /// The key path.
         key: String,
-        /// What is wrong, with the line and column when the input was text.
+        /// What is wrong.
+        problem: Problem,
+        /// What is wrong, in words, with the line and column when the input was text.
         message: String,
     },
     /// A value breaks a rule of the model (gms-core's, through gms-dyn).
@@ -93,6 +128,9 @@ pub enum FileError {
     Invalid {
         /// The key path of the value.
         key: String,
+        /// The rule, named as gms-core names its own (`"not_finite_value"`, `"not_positive"`,
+        /// `"harmonic_lengths"`).
+        rule: &'static str,
         /// The rule and the value.
         message: String,
     },
@@ -110,6 +148,25 @@ impl FileError {
             FileError::NotAnObject { .. } | FileError::Shape { .. } => ErrorKind::Shape,
             FileError::Rule { .. } | FileError::Invalid { .. } => ErrorKind::Value,
         }
+    }
+
+    /// The name of what went wrong, as the bindings give it: `"unreadable_file"`, `"not_json"`,
+    /// `"wrong_type"` (not an object), `"invalid_choice"` (`format`, `version`), `"missing_key"`
+    /// (`version`), a [`Problem::name`], or the rule of [`FileError::Invalid`]. `None` for
+    /// [`FileError::Rule`], whose gms-dyn error names its own rule.
+    pub fn kind_name(&self) -> Option<&'static str> {
+        Some(match self {
+            FileError::Read { .. } => "unreadable_file",
+            FileError::Syntax { .. } => "not_json",
+            FileError::NotAnObject { .. } => "wrong_type",
+            FileError::Format { .. }
+            | FileError::Newer { .. }
+            | FileError::Version { got: Some(_) } => "invalid_choice",
+            FileError::Version { got: None } => "missing_key",
+            FileError::Shape { problem, .. } => problem.name(),
+            FileError::Invalid { rule, .. } => rule,
+            FileError::Rule { .. } => return None,
+        })
     }
 
     /// The key path the error is about (`friction.W[2]`), if it is about one.
@@ -140,16 +197,22 @@ impl FileError {
             }
         };
         match self {
-            FileError::Shape { key, message } => FileError::Shape {
+            FileError::Shape {
+                key,
+                problem,
+                message,
+            } => FileError::Shape {
                 key: join(key),
+                problem,
                 message,
             },
             FileError::Rule { key, error } => FileError::Rule {
                 key: join(key),
                 error,
             },
-            FileError::Invalid { key, message } => FileError::Invalid {
+            FileError::Invalid { key, rule, message } => FileError::Invalid {
                 key: join(key),
+                rule,
                 message,
             },
             other => other,
@@ -200,13 +263,13 @@ impl fmt::Display for FileError {
                 "`version` is {version}: the file was written by a newer leuven-rt, and this one \
                  reads versions 1 to {VERSION}; upgrade leuven-rt to read it"
             ),
-            FileError::Shape { key, message } | FileError::Invalid { key, message }
+            FileError::Shape { key, message, .. } | FileError::Invalid { key, message, .. }
                 if key.is_empty() =>
             {
                 f.write_str(message)
             }
             FileError::Rule { key, error } if key.is_empty() => write!(f, "{error}"),
-            FileError::Shape { key, message } | FileError::Invalid { key, message } => {
+            FileError::Shape { key, message, .. } | FileError::Invalid { key, message, .. } => {
                 write!(f, "`{key}`: {message}")
             }
             FileError::Rule { key, error } => write!(f, "`{key}`: {error}"),

@@ -49,7 +49,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-pub use error::{ErrorKind, FileError};
+pub use error::{ErrorKind, FileError, Problem};
 pub use file::{
     Friction, Measurement, ModelFile, PositionTerms, Reconstruction, Report, Ripple, Source, Units,
 };

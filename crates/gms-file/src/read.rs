@@ -18,7 +18,7 @@ use serde::de::{
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Number, Value};
 
-use crate::error::FileError;
+use crate::error::{FileError, Problem};
 use crate::file::{Friction, Measurement, ModelFile, PositionTerms, Reconstruction, Report, Units};
 use crate::{FORMAT, MAX_FILE_BYTES, VERSION};
 
@@ -173,6 +173,7 @@ fn version_one(body: BodyV1) -> Result<ModelFile, FileError> {
     if body.friction.sigma2_neg.is_some() {
         return Err(FileError::Shape {
             key: "friction.sigma2_neg".to_owned(),
+            problem: Problem::UnknownKey,
             message: "unknown key in a version 1 model file (it came with version 2)".to_owned(),
         });
     }
@@ -211,12 +212,12 @@ fn file_error(path: &str, error: &serde_json::Error) -> FileError {
     // serde names the key of an unknown, missing or duplicate field in the message; the path
     // ends at the key itself for an unknown one, at the object that holds it otherwise.
     let found = [
-        ("unknown field `", "unknown key"),
-        ("missing field `", "missing key"),
-        ("duplicate field `", "key given twice"),
+        ("unknown field `", "unknown key", Problem::UnknownKey),
+        ("missing field `", "missing key", Problem::MissingKey),
+        ("duplicate field `", "key given twice", Problem::Repeated),
     ]
     .iter()
-    .find_map(|(prefix, said)| {
+    .find_map(|(prefix, said, problem)| {
         let (name, tail) = message.strip_prefix(prefix)?.split_once('`')?;
         let key = if root || path == name {
             name.to_owned()
@@ -225,11 +226,11 @@ fn file_error(path: &str, error: &serde_json::Error) -> FileError {
         } else {
             format!("{path}.{name}")
         };
-        Some((key, format!("{said}{tail}")))
+        Some((key, *problem, format!("{said}{tail}")))
     });
-    let (key, message) = found.unwrap_or_else(|| {
+    let (key, problem, message) = found.unwrap_or_else(|| {
         let key = if root { String::new() } else { path.to_owned() };
-        (key, message.to_owned())
+        (key, problem_of(message), message.to_owned())
     });
     if key.is_empty() {
         return FileError::NotAnObject { got: message };
@@ -243,7 +244,24 @@ fn file_error(path: &str, error: &serde_json::Error) -> FileError {
     } else {
         message
     };
-    FileError::Shape { key, message }
+    FileError::Shape {
+        key,
+        problem,
+        message,
+    }
+}
+
+/// The problem a message of serde (or of this reader's strict value) describes.
+fn problem_of(message: &str) -> Problem {
+    if message.starts_with("number out of range") {
+        Problem::OutOfRange
+    } else if message.starts_with("invalid length") {
+        Problem::WrongLength
+    } else if message.starts_with("key given twice") {
+        Problem::Repeated
+    } else {
+        Problem::WrongType
+    }
 }
 
 /// JSON's name for the type of `value`, as serde's messages give it.

@@ -6,7 +6,7 @@ use gms_dyn::{
     Level, ParameterSet, PositionForce, RawElements, RawParams, RippleTerms, MAX_HARMONICS,
 };
 
-use crate::error::FileError;
+use crate::error::{FileError, Problem};
 use crate::file::{Friction, ModelFile, PositionTerms};
 
 /// The validated objects of a model file: what a compensator or a simulation takes.
@@ -36,6 +36,7 @@ impl Friction {
                 };
                 return Err(FileError::Shape {
                     key: missing.to_owned(),
+                    problem: Problem::MissingKey,
                     message: format!(
                         "missing key: `{given}` is given, and Maxwell slip needs both `W` and \
                          `Delta`"
@@ -78,6 +79,7 @@ impl PositionTerms {
             if ripple.cos.is_empty() && ripple.sin.is_empty() {
                 return Err(FileError::Invalid {
                     key: format!("{prefix}.ripples[{index}]"),
+                    rule: "harmonic_lengths",
                     message: format!(
                         "a ripple needs 1 to {MAX_HARMONICS} harmonics in `cos` and `sin`, got \
                          none"
@@ -151,6 +153,7 @@ impl ModelFile {
             if !value.is_finite() {
                 return Err(FileError::Invalid {
                     key: key.to_owned(),
+                    rule: "not_finite_value",
                     message: format!("must be finite, got {}", gms_core::Shown(value)),
                 });
             }
@@ -159,6 +162,7 @@ impl ModelFile {
             if !(cutoff.is_finite() && cutoff > 0.0) {
                 return Err(FileError::Invalid {
                     key: "reconstruction.cutoff".to_owned(),
+                    rule: "not_positive",
                     message: format!(
                         "must be finite and > 0 [Hz] (or null for the signal as logged), got {}",
                         gms_core::Shown(cutoff)

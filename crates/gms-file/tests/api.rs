@@ -125,3 +125,54 @@ fn files_are_read_whole_or_refused() {
         .contains("not UTF-8"));
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn every_refusal_of_the_reader_is_named() {
+    let text = ModelFile::new(friction()).to_json().unwrap();
+    for (edited, kind, problem) in [
+        (
+            text.replace("\"units\"", "\"units\": 1, \"units\""),
+            "repeated",
+            Some(gms_file::Problem::Repeated),
+        ),
+        (
+            text.replace("\"units\": \"linear\",", ""),
+            "missing_key",
+            Some(gms_file::Problem::MissingKey),
+        ),
+        (
+            text.replace("\"units\"", "\"colour\": 1, \"units\""),
+            "unknown_key",
+            Some(gms_file::Problem::UnknownKey),
+        ),
+        (
+            text.replace("\"measurement\": {", "\"measurement\": null, \"x\": {"),
+            "wrong_type",
+            Some(gms_file::Problem::WrongType),
+        ),
+        (
+            text.replace("\"Fc\": 1.0", "\"Fc\": 1e400"),
+            "out_of_range",
+            Some(gms_file::Problem::OutOfRange),
+        ),
+        (
+            text.replace("\"version\": 2", "\"version\": 9"),
+            "invalid_choice",
+            None,
+        ),
+        (text.replace("\"version\": 2,", ""), "missing_key", None),
+        (text.replace("\"Fc\": 1.0", "\"Fc\": NaN"), "not_json", None),
+    ] {
+        let error = ModelFile::from_json(&edited).unwrap_err();
+        assert_eq!(error.kind_name(), Some(kind), "{error}");
+        if let Some(problem) = problem {
+            assert!(
+                matches!(error, FileError::Shape { problem: p, .. } if p == problem),
+                "{error}"
+            );
+        }
+    }
+    let mut file = ModelFile::new(friction());
+    file.friction.Fs = 0.5;
+    assert_eq!(file.validate().unwrap_err().kind_name(), None);
+}

@@ -16,8 +16,9 @@ create_exception!(
     ModelFileError,
     ParameterError,
     "A model file or parameter file that the reader refuses (docs/data-and-reports.md#model-file): \
-     `kind` says why (\"read\", \"syntax\", \"format\", \"shape\", \"value\"), `key` names the key \
-     path (\"level.ripples[0].period\") or is None, `line` and `column` place a syntax error."
+     `kind` names what went wrong (\"not_json\", \"unknown_key\", \"static_below_coulomb\", ...), \
+     `field` the key path (\"level.ripples[0].period\") or None, `line` and `column` place a \
+     syntax error."
 );
 create_exception!(
     leuven_rt,

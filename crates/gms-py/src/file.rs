@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use gms_file::{FileError, Friction, ModelFile};
+use gms_file::{FileError, Friction, ModelFile, Problem};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyMapping, PyString, PyTuple};
@@ -12,15 +12,21 @@ use serde_json::{Map, Number, Value};
 
 use crate::errors::ModelFileError;
 
-/// The Python exception of a refused file: `ModelFileError` with the error's kind, key path and,
-/// for a syntax error, line and column as attributes.
+/// The Python exception of a refused file: `ModelFileError` with the data of
+/// docs/errors.md: `kind` (what went wrong), `field` (the key path, or None), and for a syntax
+/// error `line` and `column`.
 fn raise(py: Python<'_>, error: &FileError, message: String) -> PyErr {
     let exception = ModelFileError::new_err(message);
     let value = exception.value(py);
     let (line, column) = error.position().unzip();
+    let kind = match (error.kind_name(), error.rule()) {
+        (Some(kind), _) => kind.to_owned(),
+        (None, Some(rule)) => rule_kind(&rule),
+        (None, None) => error.kind().name().to_owned(),
+    };
     let set = || -> PyResult<()> {
-        value.setattr("kind", error.kind().name())?;
-        value.setattr("key", error.key())?;
+        value.setattr("kind", kind)?;
+        value.setattr("field", error.key())?;
         value.setattr("line", line)?;
         value.setattr("column", column)
     };
@@ -28,6 +34,31 @@ fn raise(py: Python<'_>, error: &FileError, message: String) -> PyErr {
         Ok(()) => exception,
         Err(failed) => failed,
     }
+}
+
+/// The name of the rule a gms-dyn error breaks: its variant (gms-core's, for a rule of the
+/// core) in snake case, `"static_below_coulomb"`, `"both_hysteresis"`.
+fn rule_kind(error: &gms_dyn::Error) -> String {
+    let debug = match error {
+        gms_dyn::Error::Core(core) => format!("{core:?}"),
+        other => format!("{other:?}"),
+    };
+    let variant = debug
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .next()
+        .unwrap_or_default();
+    let mut name = String::with_capacity(variant.len() + 4);
+    for (index, character) in variant.chars().enumerate() {
+        if character.is_ascii_uppercase() {
+            if index > 0 {
+                name.push('_');
+            }
+            name.push(character.to_ascii_lowercase());
+        } else {
+            name.push(character);
+        }
+    }
+    name
 }
 
 fn refused(py: Python<'_>, error: &FileError) -> PyErr {
@@ -80,12 +111,43 @@ fn item_path(parent: &str, key: &str) -> String {
     }
 }
 
+/// A Python int as a JSON number, as JSON text would read it: exactly within i64 or u64, else
+/// the nearest double, else out of range.
+fn whole_number(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
+    if let Ok(whole) = object.extract::<i64>() {
+        return Ok(Value::Number(whole.into()));
+    }
+    if let Ok(whole) = object.extract::<u64>() {
+        return Ok(Value::Number(whole.into()));
+    }
+    object
+        .extract::<f64>()
+        .ok()
+        .and_then(Number::from_f64)
+        .map(Value::Number)
+        .ok_or_else(|| {
+            // str() of a long integer may itself be refused (Python's digit limit).
+            let bits = object
+                .call_method0("bit_length")
+                .and_then(|bits| bits.extract::<u64>())
+                .unwrap_or(0);
+            FileError::Shape {
+                key: path.to_owned(),
+                problem: Problem::OutOfRange,
+                message: format!(
+                    "number out of range: an integer of {bits} bits is beyond the f64 range"
+                ),
+            }
+        })
+}
+
 /// A Python object as a JSON value, refusing what JSON cannot hold (a non-finite float, an
 /// integer beyond the f64 range, a key that is not text, an object of another type), naming the
 /// key path. numpy arrays and scalars are taken through their `tolist()`.
 fn to_value(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
-    let shape = |message: String| FileError::Shape {
+    let shape = |problem: Problem, message: String| FileError::Shape {
         key: path.to_owned(),
+        problem,
         message,
     };
     if object.is_none() {
@@ -95,36 +157,18 @@ fn to_value(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
         return Ok(Value::Bool(flag.is_true()));
     }
     if object.is_instance_of::<PyInt>() {
-        if let Ok(whole) = object.extract::<i64>() {
-            return Ok(Value::Number(whole.into()));
-        }
-        if let Ok(whole) = object.extract::<u64>() {
-            return Ok(Value::Number(whole.into()));
-        }
-        // As JSON text would read it: the nearest double, or out of range.
-        return object
-            .extract::<f64>()
-            .ok()
-            .and_then(Number::from_f64)
-            .map(Value::Number)
-            .ok_or_else(|| {
-                // str() of a long integer may itself be refused (Python's digit limit).
-                let bits = object
-                    .call_method0("bit_length")
-                    .and_then(|bits| bits.extract::<u64>())
-                    .unwrap_or(0);
-                shape(format!(
-                    "number out of range: an integer of {bits} bits is beyond the f64 range"
-                ))
-            });
+        return whole_number(object, path);
     }
     if let Ok(number) = object.cast::<PyFloat>() {
         let value = number.value();
         return Number::from_f64(value).map(Value::Number).ok_or_else(|| {
-            shape(format!(
-                "must be a finite number (JSON has no spelling for {})",
-                gms_core::Shown(value)
-            ))
+            shape(
+                Problem::OutOfRange,
+                format!(
+                    "must be a finite number (JSON has no spelling for {})",
+                    gms_core::Shown(value)
+                ),
+            )
         });
     }
     if let Ok(text) = object.cast::<PyString>() {
@@ -135,7 +179,10 @@ fn to_value(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
         for (key, item) in dict.iter() {
             let Ok(key) = key.cast::<PyString>() else {
                 let shown = key.repr().map(|text| text.to_string()).unwrap_or_default();
-                return Err(shape(format!("keys must be text, got {shown}")));
+                return Err(shape(
+                    Problem::WrongType,
+                    format!("keys must be text, got {shown}"),
+                ));
             };
             let key = key.to_string();
             let value = to_value(&item, &item_path(path, &key))?;
@@ -160,8 +207,12 @@ fn to_value(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
     if let Ok(mapping) = object.cast::<PyMapping>() {
         // Another mapping (a MappingProxyType, ...): read as a dict.
         let dict = PyDict::new(object.py());
-        dict.update(mapping)
-            .map_err(|error| shape(format!("cannot be read as a mapping: {error}")))?;
+        dict.update(mapping).map_err(|error| {
+            shape(
+                Problem::WrongType,
+                format!("cannot be read as a mapping: {error}"),
+            )
+        })?;
         return to_value(dict.as_any(), path);
     }
     // numpy arrays and scalars: their Python values.
@@ -175,9 +226,10 @@ fn to_value(object: &Bound<'_, PyAny>, path: &str) -> Result<Value, FileError> {
         .name()
         .map(|name| name.to_string())
         .unwrap_or_default();
-    Err(shape(format!(
-        "must be a JSON value (dict, list, str, number, bool or None), got {type_name}"
-    )))
+    Err(shape(
+        Problem::WrongType,
+        format!("must be a JSON value (dict, list, str, number, bool or None), got {type_name}"),
+    ))
 }
 
 /// The validated model file's plain values, as a dict in the current version.
