@@ -22,10 +22,17 @@ __all__ = [
     "Engine",
     "InputError",
     "MassEngine",
+    "ModelFileError",
     "OnlineIdentifier",
     "ParameterError",
     "__version__",
     "check_params",
+    "model_file_from_json",
+    "model_file_from_object",
+    "model_file_load",
+    "model_file_to_json",
+    "parameter_file_from_json",
+    "parameter_file_to_json",
     "sensitivities",
     "simulate_sets",
     "slip_responses",
@@ -80,6 +87,13 @@ class ParameterError(_ErrorData, ValueError): ...
 class InputError(_ErrorData, ValueError): ...
 class DivergenceError(_ErrorData, ValueError): ...
 class ConcurrentUseError(_ErrorData, RuntimeError): ...
+
+class ModelFileError(ParameterError):
+    """The file reader's refusal: ``field`` is the key path; ``line`` and ``column`` place a
+    syntax error."""
+
+    line: int | None
+    column: int | None
 
 class _ParamsLike(Protocol):
     """What the extension reads from a parameter set: the attributes of ``leuven_rt.Params``."""
@@ -161,6 +175,12 @@ class CorePositionForce:
     def ripples(self) -> int: ...
 
 def check_params(params: _ParamsLike | CoreParams) -> None: ...
+def model_file_from_json(text: str) -> dict[str, Any]: ...
+def model_file_from_object(object: Any) -> dict[str, Any]: ...
+def model_file_load(path: str) -> dict[str, Any]: ...
+def model_file_to_json(object: Any) -> str: ...
+def parameter_file_from_json(text: str) -> dict[str, Any]: ...
+def parameter_file_to_json(object: Any) -> str: ...
 def slip_responses(x: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]: ...
 def sensitivities(
     params: _ParamsLike | CoreParams,

@@ -202,31 +202,21 @@ class Params:
         return cls(**mapping)
 
     def to_json(self) -> str:
-        """The parameter file as JSON text."""
-        import json  # here, not at the top: `import leuven_rt` stays light
-
-        return json.dumps(self.to_dict(), indent=2)
+        """The parameter file as JSON text, written by gms-file (the writer of the model file)."""
+        return _core.parameter_file_to_json(self.to_dict())
 
     @classmethod
     def from_json(cls, text: str) -> Params:
-        """Parses JSON text of a parameter file."""
-        import json
-
-        try:
-            mapping = json.loads(text)
-        except (TypeError, json.JSONDecodeError, UnicodeDecodeError) as error:
+        """Parses JSON text of a parameter file with gms-file, the reader the C library uses: a
+        refusal raises :class:`~leuven_rt.errors.ModelFileError` naming the key."""
+        if not isinstance(text, str):
             raise ParameterError(
-                f"parameters must be JSON text of an object: {error}", kind="not_json"
-            ) from None
-        except RecursionError:
-            raise ParameterError(
-                "parameters must be JSON text of an object: nested too deeply", kind="not_json"
-            ) from None
-        except ValueError as error:  # e.g. an integer of more digits than Python converts
-            raise ParameterError(
-                f"parameters must be JSON text of an object: {error}", kind="not_json"
-            ) from None
-        return cls.from_dict(mapping)
+                f"a parameter file's text must be a str, got {type(text).__name__}",
+                kind="wrong_type",
+                field="text",
+                value=text,
+            )
+        return cls(**_core.parameter_file_from_json(text))
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Writes the parameter file, atomically: a failure leaves no partial file behind."""

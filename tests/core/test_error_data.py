@@ -27,6 +27,7 @@ from leuven_rt.errors import (
     DataError,
     DivergenceError,
     InputError,
+    ModelFileError,
     OutputError,
     ParameterError,
     StackOverflowError,
@@ -164,6 +165,23 @@ def test_the_classes_are_the_extensions() -> None:
         assert all(getattr(cls, name) is None for name in DATA)
     assert issubclass(ConcurrentUseError, RuntimeError) and not issubclass(ConcurrentUseError, ValueError)
     assert issubclass(DivergenceError, ValueError)
+
+
+def test_the_file_readers_class_is_a_parameter_error_of_the_extension() -> None:
+    """ModelFileError is made beside the other four (a ParameterError subclass): the same data,
+    and ``line`` and ``column`` of a syntax error, kept through pickling."""
+    assert _core.ModelFileError is ModelFileError is lr.ModelFileError
+    assert ModelFileError.__module__ == "leuven_rt"
+    assert issubclass(ModelFileError, ParameterError)
+    assert all(getattr(ModelFileError, name) is None for name in (*DATA, "line", "column"))
+    error = refusal(lambda: lr.ModelFile.from_json('{"format": "leuven-rt model",\n "version": }'))
+    assert type(error) is ModelFileError
+    assert (error.kind, error.field, error.line, error.column) == ("not_json", None, 2, 13)
+    again = pickle.loads(pickle.dumps(error))
+    assert type(again) is ModelFileError and str(again) == str(error)
+    assert (again.kind, again.line, again.column) == ("not_json", 2, 13)
+    made = ModelFileError("m", kind="unknown_key", field="level.slope")
+    assert (made.kind, made.field, made.line) == ("unknown_key", "level.slope", None)
 
 
 def refusal(call: Any) -> Any:
@@ -433,16 +451,16 @@ PYTHON = [
     ),
     pytest.param(
         lambda: lr.ModelFile.from_dict(
-            {"format": "leuven-rt model", "version": 1, "friction": {**MAXWELL, "Fs": 0.5}}
+            {"format": "leuven-rt model", "version": 1, "units": "linear", "friction": {**MAXWELL, "Fs": 0.5}}
         ),
-        ParameterError,
-        {"kind": "static_below_coulomb", "field": "friction.Fs", "value": 0.5},
+        ModelFileError,
+        {"kind": "static_below_coulomb", "field": "friction.Fs", "value": 0.5, "bound": 1.0},
         id="model-file-friction",
     ),
     pytest.param(
-        lambda: lr.ModelFile.from_dict({"format": "leuven-rt model", "version": 2, "friction": MAXWELL}),
-        ParameterError,
-        {"kind": "invalid_choice", "field": "version", "value": 2, "expected": 1},
+        lambda: lr.ModelFile.from_dict({"format": "leuven-rt model", "version": 3, "friction": MAXWELL}),
+        ModelFileError,
+        {"kind": "invalid_choice", "field": "version", "line": None},
         id="version",
     ),
     pytest.param(
@@ -510,11 +528,12 @@ PYTHON = [
             {
                 "format": "leuven-rt model",
                 "version": 1,
+                "units": "linear",
                 "friction": MAXWELL,
                 "level": {"ripples": [{"period": 1e-12, "cos": [0.1], "sin": [0.0]}]},
             }
         ),
-        ParameterError,
+        ModelFileError,
         {"kind": "phase_unresolved", "field": "level.ripples[0].period", "value": 1e-12, "index": 0},
         id="model-file-phase",
     ),
@@ -550,7 +569,7 @@ def test_a_file_error_keeps_its_data_under_the_file_name(tmp_path: Path) -> None
         '{"Fc": 1.0, "Fs": 0.5, "Vs": 1e-3, "delta": 2.0, "n": 2.0, "sigma0": 1e5}', encoding="utf-8"
     )
     error = refusal(lambda: lr.Params.load(path))
-    assert str(error).startswith(f"{path}: `Fs` must be >= `Fc`")
+    assert str(error).startswith(f"{path}: `Fs`: `Fs` must be >= `Fc`")
     assert (error.kind, error.field, error.value) == ("static_below_coulomb", "Fs", 0.5)
     missing = refusal(lambda: lr.Params.load(tmp_path / "missing.json"))
     assert (missing.kind, missing.value) == ("unreadable_file", str(tmp_path / "missing.json"))

@@ -61,9 +61,10 @@ enum leuven_rt_status
   // The step produced a non-finite force (inputs far outside SI magnitudes). The output
   // holds the last good force.
   LEUVEN_RT_STEP_FAILED = 7,
-  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
-  // object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
-  // has an unknown, missing or mistyped key; the error message names the key or the cause.
+  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not JSON,
+  // has a `format` or `version` this library does not read, or has a key given twice, an
+  // unknown or missing key, or a value of the wrong type; the error message names the key
+  // path or the cause (docs/data-and-reports.md#model-file).
   LEUVEN_RT_INVALID_FILE = 8,
   // A feedforward compensator was given a level or a position force (by a call, or in a
   // model file) without the axis's start position: they would be placed from x = 0, out of
@@ -235,26 +236,26 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               struct leuven_rt_compensator **out,
                                               struct leuven_rt_error *error);
 
-// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
-// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
-// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
-// Otherwise as `leuven_rt_compensator_create`.
+// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
+// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 //
-// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
-// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
-// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
-// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
-// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
-// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
-// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
-// axis's start position: it gives `LEUVEN_RT_NO_START_POSITION` here, and is read with
+// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
+// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
+// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
+// `friction`, `level` and `position_force`; `units`, `measurement`, `reconstruction` and
+// `report` are checked but not the compensator's. A plain parameter file reads as a model file
+// of that friction, its keys named `friction.<key>`. A model file with a level or a position
+// force in feedforward mode needs the axis's start position: it gives
+// `LEUVEN_RT_NO_START_POSITION` here, and is read with
 // `leuven_rt_compensator_create_from_json_at`.
 //
-// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
-// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
-// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
-// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
-// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`, `sigma2_neg`: `Fc`, `Fs`, `sigma2`).
+// Text that is not JSON, a `format` or `version` this library does not read (a later version
+// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
+// type or beyond the f64 range give `LEUVEN_RT_INVALID_FILE`; a value that breaks a rule of the
+// model gives `LEUVEN_RT_INVALID_PARAMETER` and the field, as with the struct. The message
+// starts with the key path (`` `level.ripples[0].period`: ``), or says "not JSON" with the line
+// and column of a syntax error.
 //
 // # Safety
 // `json` must be null or point to `len` readable bytes; `out` and `error` as in
@@ -282,9 +283,10 @@ leuven_rt_status leuven_rt_compensator_create_from_json_at(const char *json,
                                                            struct leuven_rt_compensator **out,
                                                            struct leuven_rt_error *error);
 
-// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
-// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
-// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
+// name), as `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be
+// read (missing, not a regular file, larger than 1 MiB, not UTF-8) gives
+// `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
 //
 // # Safety
 // `path` must be null or a NUL-terminated string; `out` and `error` as in

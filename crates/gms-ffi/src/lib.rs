@@ -42,13 +42,12 @@
 use core::ffi::{c_char, CStr};
 use core::fmt::{self, Write as _};
 
-use serde::Deserialize;
-
 use gms_core::{Error, Field, Mode};
 use gms_dyn::{
     Compensator, HysteresisKind, Level, PositionForce, RawElements, RawParams, RippleTerms, Terms,
     MAX_HARMONICS, MAX_RIPPLES,
 };
+use gms_file::{FileError, ModelFile};
 
 /// The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
@@ -100,9 +99,10 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
-    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
-    /// object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
-    /// has an unknown, missing or mistyped key; the error message names the key or the cause.
+    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not JSON,
+    /// has a `format` or `version` this library does not read, or has a key given twice, an
+    /// unknown or missing key, or a value of the wrong type; the error message names the key
+    /// path or the cause (docs/data-and-reports.md#model-file).
     LEUVEN_RT_INVALID_FILE = 8,
     /// A feedforward compensator was given a level or a position force (by a call, or in a
     /// model file) without the axis's start position: they would be placed from x = 0, out of
@@ -274,7 +274,7 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
-        8 => c"the parameter or model file cannot be read, or has another format or version, or an unknown, missing or mistyped key",
+        8 => c"the parameter or model file cannot be read, is not JSON, has another format or version, or a repeated, unknown, missing or mistyped key",
         9 => c"a feedforward compensator needs the axis's start position before a level or a position force",
         _ => c"unknown status",
     };
@@ -308,26 +308,26 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
     finish(created, error)
 }
 
-/// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
-/// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
-/// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
-/// Otherwise as `leuven_rt_compensator_create`.
+/// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
+/// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+/// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 ///
-/// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
-/// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
-/// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
-/// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
-/// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
-/// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
-/// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
-/// axis's start position: it gives `LEUVEN_RT_NO_START_POSITION` here, and is read with
+/// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
+/// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
+/// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
+/// `friction`, `level` and `position_force`; `units`, `measurement`, `reconstruction` and
+/// `report` are checked but not the compensator's. A plain parameter file reads as a model file
+/// of that friction, its keys named `friction.<key>`. A model file with a level or a position
+/// force in feedforward mode needs the axis's start position: it gives
+/// `LEUVEN_RT_NO_START_POSITION` here, and is read with
 /// `leuven_rt_compensator_create_from_json_at`.
 ///
-/// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
-/// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
-/// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
-/// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
-/// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`, `sigma2_neg`: `Fc`, `Fs`, `sigma2`).
+/// Text that is not JSON, a `format` or `version` this library does not read (a later version
+/// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
+/// type or beyond the f64 range give `LEUVEN_RT_INVALID_FILE`; a value that breaks a rule of the
+/// model gives `LEUVEN_RT_INVALID_PARAMETER` and the field, as with the struct. The message
+/// starts with the key path (`` `level.ripples[0].period`: ``), or says "not JSON" with the line
+/// and column of a syntax error.
 ///
 /// # Safety
 /// `json` must be null or point to `len` readable bytes; `out` and `error` as in
@@ -351,7 +351,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
         // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
         // alignment.
         let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        from_json_text(text, dt, mode, None, out)
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, None, out)
     });
     finish(created, error)
 }
@@ -384,14 +385,16 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json_at(
         // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
         // alignment.
         let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        from_json_text(text, dt, mode, Some(x), out)
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
     });
     finish(created, error)
 }
 
-/// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
-/// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
-/// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+/// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
+/// name), as `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be
+/// read (missing, not a regular file, larger than 1 MiB, not UTF-8) gives
+/// `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
 ///
 /// # Safety
 /// `path` must be null or a NUL-terminated string; `out` and `error` as in
@@ -421,8 +424,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
                 format_args!("the path is not UTF-8"),
             )
         })?);
-        let text = read_parameter_file(path)?;
-        from_json_text(&text, dt, mode, None, out)
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, None, out)
     });
     finish(created, error)
 }
@@ -458,8 +461,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file_at(
                 format_args!("the path is not UTF-8"),
             )
         })?);
-        let text = read_parameter_file(path)?;
-        from_json_text(&text, dt, mode, Some(x), out)
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
     });
     finish(created, error)
 }
@@ -883,8 +886,25 @@ impl Refusal {
 
     /// A refused parameter set (or `dt`).
     fn from_dyn(reason: gms_dyn::Error) -> Self {
+        let (status, field, index) = Refusal::sort(reason);
+        Refusal::new(status, field, index, format_args!("{reason}"))
+    }
+
+    /// A refused model file or parameter file: a value that breaks a rule of the model gives
+    /// the status, field and index of that rule (as the struct's would), anything else
+    /// `LEUVEN_RT_INVALID_FILE`; the message names the key path.
+    fn from_file(reason: &FileError) -> Self {
+        let (status, field, index) = match reason.rule() {
+            Some(rule) => Refusal::sort(rule),
+            None => (LEUVEN_RT_INVALID_FILE, c"", 0),
+        };
+        Refusal::new(status, field, index, format_args!("{reason}"))
+    }
+
+    /// The status, the field and the index of a refusal of gms-dyn.
+    fn sort(reason: gms_dyn::Error) -> (leuven_rt_status, &'static CStr, usize) {
         use gms_dyn::Error as Refused;
-        let (status, field, index) = match reason {
+        match reason {
             Refused::Core(Error::NotPositive {
                 field: Field::dt, ..
             }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
@@ -950,8 +970,7 @@ impl Refusal {
                 },
             ),
             _ => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
-        };
-        Refusal::new(status, field, index, format_args!("{reason}"))
+        }
     }
 }
 
@@ -1043,271 +1062,27 @@ fn build(
     Ok(())
 }
 
-/// A parameter file: the keys of docs/parameters.md, no others.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ParamsFile {
-    Fc: f64,
-    Fs: f64,
-    Vs: f64,
-    delta: f64,
-    n: f64,
-    #[serde(default)]
-    sigma1: f64,
-    #[serde(default)]
-    sigma2: f64,
-    sigma2_neg: Option<f64>,
-    W: Option<Vec<f64>>,
-    Delta: Option<Vec<f64>>,
-    Fc_neg: Option<f64>,
-    Fs_neg: Option<f64>,
-    sigma0: Option<f64>,
-}
-
-/// The largest parameter file read: far above any real one (32 elements), and small enough that
-/// a path to a device or a huge file cannot exhaust memory.
-const MAX_PARAMETER_FILE_BYTES: u64 = 1 << 20;
-
-/// Reads a parameter file: a regular file of at most [`MAX_PARAMETER_FILE_BYTES`] (a FIFO or a
-/// device would block or never end).
-fn read_parameter_file(path: &std::path::Path) -> Result<Vec<u8>, Refusal> {
-    use std::io::Read;
-    let refuse = |reason: &dyn fmt::Display| {
-        Refusal::new(
-            LEUVEN_RT_INVALID_FILE,
-            c"",
-            0,
-            format_args!("cannot read {}: {reason}", path.display()),
-        )
-    };
-    let file = std::fs::File::open(path).map_err(|reason| refuse(&reason))?;
-    let metadata = file.metadata().map_err(|reason| refuse(&reason))?;
-    if !metadata.is_file() {
-        return Err(refuse(&"not a regular file"));
-    }
-    let mut text = Vec::new();
-    file.take(MAX_PARAMETER_FILE_BYTES + 1)
-        .read_to_end(&mut text)
-        .map_err(|reason| refuse(&reason))?;
-    if text.len() as u64 > MAX_PARAMETER_FILE_BYTES {
-        return Err(refuse(&format_args!(
-            "larger than {MAX_PARAMETER_FILE_BYTES} bytes"
-        )));
-    }
-    Ok(text)
-}
-
-/// The `format` of a versioned model file (docs/parameters.md#model-file).
-const MODEL_FORMAT: &str = "leuven-rt model";
-
-/// The one `version` of the model file this library reads.
-const MODEL_VERSION: u64 = 1;
-
-/// A versioned model file (docs/parameters.md#model-file): the friction parameters, an optional
-/// position-dependent level, measurement terms (checked, not used) and a report (ignored).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ModelFile {
-    #[allow(dead_code)] // checked by the probe before this is read
-    format: String,
-    #[allow(dead_code)] // checked by the probe before this is read
-    version: u64,
-    units: Units,
-    friction: ParamsFile,
-    #[serde(default)]
-    level: Option<LevelFile>,
-    #[serde(default)]
-    measurement: Option<MeasurementFile>,
-    #[serde(default)]
-    #[allow(dead_code)]
-    // read so that the key is allowed; its content is not the compensator's
-    report: Option<serde::de::IgnoredAny>,
-}
-
-/// What the positions are: informational for the compensator.
-#[derive(Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum Units {
-    Linear,
-    Rotary,
-}
-
-/// The `level` object of a model file: `leuven_rt.PositionLevel`'s fields, with its defaults.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LevelFile {
-    #[serde(default)]
-    middle: f64,
-    #[serde(default = "one")]
-    half_stroke: f64,
-    #[serde(default)]
-    trend: [f64; 2],
-    #[serde(default)]
-    ripples: Vec<RippleFile>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-/// One ripple of a model file's level.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RippleFile {
-    period: f64,
-    cos: Vec<f64>,
-    sin: Vec<f64>,
-}
-
-/// The measurement terms of a model file: a force offset and an inertia that the log's force
-/// contained; not friction, so the compensator leaves them out.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MeasurementFile {
-    #[serde(default)]
-    offset: f64,
-    #[serde(default)]
-    inertia: f64,
-}
-
-/// Whether a JSON object has a `format` key (a model file) or not (a parameter file).
-#[derive(Deserialize)]
-struct Probe {
-    #[serde(default)]
-    format: Option<serde_json::Value>,
-    #[serde(default)]
-    version: Option<serde_json::Value>,
-}
-
-/// A refused file: `LEUVEN_RT_INVALID_FILE` with the cause.
-fn invalid_file(message: fmt::Arguments<'_>) -> Refusal {
-    Refusal::new(LEUVEN_RT_INVALID_FILE, c"", 0, message)
-}
-
-/// Parses the text of a parameter file or of a versioned model file (an object with a
-/// `format` key) and builds the compensator from it, starting at `start` if given.
-fn from_json_text(
-    text: &[u8],
+/// Builds the compensator from a read model file (or parameter file), starting at `start` if
+/// given: every value validated, each refusal naming its key.
+fn from_file(
+    file: &ModelFile,
     dt: f64,
     mode: Mode,
     start: Option<f64>,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
-    // A first look at `format` and `version` only, so that a file of another version is
-    // called that (not refused for keys this version does not know); the file is then read
-    // once more as what it is, so that serde's messages keep their line and column and
-    // duplicate keys stay refused.
-    let probe = serde_json::from_slice::<Probe>(text).ok();
-    let Some(Probe {
-        format: Some(format),
-        version,
-    }) = probe
-    else {
-        let file: ParamsFile = serde_json::from_slice(text)
-            .map_err(|reason| invalid_file(format_args!("parameter file: {reason}")))?;
-        return from_params_file(&file, dt, mode, start, &Level::none(), out);
-    };
-    if format.as_str() != Some(MODEL_FORMAT) {
-        return Err(invalid_file(format_args!(
-            "model file: `format` must be {MODEL_FORMAT:?}, got {format}"
-        )));
-    }
-    match version {
-        Some(version) if version.as_u64() == Some(MODEL_VERSION) => {}
-        Some(version) => {
-            return Err(invalid_file(format_args!(
-                "model file: `version` must be {MODEL_VERSION}, got {version}"
-            )))
-        }
-        None => {
-            return Err(invalid_file(format_args!(
-                "model file: `version` must be {MODEL_VERSION}, got none"
-            )))
-        }
-    }
-    let file: ModelFile = serde_json::from_slice(text)
-        .map_err(|reason| invalid_file(format_args!("model file: {reason}")))?;
-    // Informational: positions in metres or radians read the same to the compensator.
-    let (Units::Linear | Units::Rotary) = file.units;
-    if let Some(measurement) = &file.measurement {
-        for (key, value) in [
-            ("offset", measurement.offset),
-            ("inertia", measurement.inertia),
-        ] {
-            // serde_json refuses numbers beyond f64; this keeps the rule explicit.
-            if !value.is_finite() {
-                return Err(invalid_file(format_args!(
-                    "model file: `measurement.{key}` must be finite, got {value}"
-                )));
-            }
-        }
-    }
-    let level = match &file.level {
-        None => Level::none(),
-        Some(level) => {
-            let mut terms = Vec::with_capacity(level.ripples.len());
-            terms.extend(level.ripples.iter().map(|ripple| RippleTerms {
-                period: ripple.period,
-                cos: &ripple.cos,
-                sin: &ripple.sin,
-            }));
-            Level::new(level.middle, level.half_stroke, level.trend, &terms)
-                .map_err(|reason| Refusal::from_dyn(reason.into()))?
-        }
-    };
-    from_params_file(&file.friction, dt, mode, start, &level, out)
-}
-
-/// Builds the compensator from the keys of a parameter file and a level, starting at `start`
-/// if given.
-fn from_params_file(
-    file: &ParamsFile,
-    dt: f64,
-    mode: Mode,
-    start: Option<f64>,
-    level: &Level,
-    out: &mut *mut leuven_rt_compensator,
-) -> Result<(), Refusal> {
-    let elements = match (&file.W, &file.Delta) {
-        (Some(w), Some(delta)) => Some(RawElements { w, delta }),
-        (None, None) => None,
-        (Some(_), None) | (None, Some(_)) => {
-            let (given, missing) = if file.W.is_some() {
-                ("W", c"Delta")
-            } else {
-                ("Delta", c"W")
-            };
-            return Err(Refusal::new(
-                LEUVEN_RT_INVALID_PARAMETER,
-                missing,
-                0,
-                format_args!(
-                    "parameter file: `{given}` is given without `{}`; Maxwell slip needs both",
-                    missing.to_string_lossy()
-                ),
-            ));
-        }
-    };
-    let raw = RawParams {
-        fc: file.Fc,
-        fs: file.Fs,
-        vs: file.Vs,
-        delta: file.delta,
-        n: file.n,
-        sigma1: file.sigma1,
-        sigma2: file.sigma2,
-        fc_neg: file.Fc_neg.unwrap_or(file.Fc),
-        fs_neg: file.Fs_neg.unwrap_or(file.Fs),
-        sigma2_neg: file.sigma2_neg,
-        sigma0: file.sigma0,
-        elements,
-    };
+    let model = file
+        .validate()
+        .map_err(|reason| Refusal::from_file(&reason))?;
     let terms = Terms {
         start,
-        level: *level,
-        position_force: PositionForce::none(),
+        level: model.level,
+        position_force: model.position_force,
     };
-    build(&raw, dt, mode, &terms, out)
+    let compensator =
+        Compensator::with_terms(&model.params, dt, mode, &terms).map_err(Refusal::from_dyn)?;
+    *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
+    Ok(())
 }
 
 /// The member of `leuven_rt_params` that holds `field`.

@@ -11,6 +11,7 @@
 mod compensator;
 mod convert;
 mod errors;
+mod file;
 mod fit;
 mod level;
 mod mechanics;
@@ -37,6 +38,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
     m.add_function(wrap_pyfunction!(fit::sensitivities, m)?)?;
     m.add_function(wrap_pyfunction!(fit::simulate_sets, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_object, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_load, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_to_json, m)?)?;
     m.add_class::<params::CoreParams>()?;
     m.add_class::<level::CoreLevel>()?;
     m.add_class::<level::CorePositionForce>()?;
