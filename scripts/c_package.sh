@@ -8,8 +8,8 @@
 #   bash scripts/c_package.sh                 # into a temporary prefix, removed afterwards
 #   bash scripts/c_package.sh --prefix DIR    # install into DIR and keep it
 #
-# Needs cargo-c (installed here if missing, pinned to the last release that builds with the
-# stable Rust of CI), a C compiler, pkg-config and cmake.
+# Needs cargo-c (pinned), a C compiler, pkg-config and cmake: scripts/system.sh installs those
+# that are missing.
 set -euo pipefail
 prefix="" keep=0
 case "$#:${1:-}" in
@@ -25,19 +25,14 @@ cleanup() { rm -rf "$work"; }
 trap cleanup EXIT
 [ -n "$prefix" ] || prefix="$work/prefix"
 
-if ! command -v cargo-cinstall >/dev/null; then
-    echo "installing cargo-c (one time; it compiled in 42 min on 2 busy cores)"
-    cargo install --quiet --locked cargo-c --version 0.10.24
-fi
-for tool in cmake pkg-config cc strip readelf; do
-    if ! command -v "$tool" >/dev/null; then
-        echo "c_package.sh: $tool is missing (Debian: apt-get install cmake pkg-config gcc)" >&2
-        exit 1
-    fi
-done
+source scripts/system.sh
+system_install gcc pkg-config libssl-dev cmake
+cargo_c_install
 
+start=$SECONDS
 cargo cinstall -p gms-ffi --profile release-c --prefix "$prefix" --libdir lib >"$work/cinstall.log" 2>&1 \
     || { cat "$work/cinstall.log" >&2; exit 1; }
+built=$((SECONDS - start))
 lib="$prefix/lib"
 size() { stat -L -c %s "$1"; }
 before="$(size "$lib/libleuven_rt.a")"
@@ -86,6 +81,7 @@ cmake --build "$work/cmake" >>"$work/cmake.log" 2>&1 || { cat "$work/cmake.log" 
 out="$("$work/cmake/example_static")"
 
 echo "installed into $prefix$([ "$keep" = 1 ] || echo ' (temporary)'): $(cd "$prefix" && find . -type f -o -type l | sort | tr '\n' ' ')"
+echo "cargo cinstall (build and install): $built s"
 echo "libleuven_rt.a: $before bytes built, $after after strip --strip-debug; libleuven_rt.so: $(size "$lib/libleuven_rt.so") bytes, SONAME $soname"
 echo "example (pkg-config, shared): $(size "$work/example_pkgconfig") bytes; example_static (CMake): $(size "$work/cmake/example_static") bytes"
 echo "$out"

@@ -16,6 +16,7 @@ rm -f dist/leuven_rt-*.whl dist/leuven_rt-*.tar.gz
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
 build() { "$@" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }; }
+# The flags of scripts/setup.sh's editable build: after it, this build has nothing to compile.
 build .venv/bin/maturin build --release --quiet --zig --compatibility manylinux2014 --out dist
 build .venv/bin/maturin sdist --out dist
 # auditwheel's verdict: the wheel is consistent with manylinux_2_17 (glibc 2.17) and no newer.

@@ -1,37 +1,40 @@
 #!/usr/bin/env bash
 # Fuzzes the C ABI for SECONDS (default 60): the libFuzzer target crates/gms-ffi/fuzz/fuzz_c_abi.c,
-# built with clang -fsanitize=fuzzer,address,undefined against the release static library.
-# Installs clang (and libFuzzer, in libclang-rt-*-dev) with apt if missing. New inputs go to a
+# built with clang -fsanitize=fuzzer,address,undefined against a static library of the C ABI:
+# LIBRARY if given (scripts/test.sh passes the libleuven_rt.a that scripts/c_package.sh
+# installed, so that the library users get is fuzzed and not built twice), otherwise
+# libgms_ffi.a of `cargo build --release -p gms-ffi`.
+#
+#   bash scripts/fuzz_c.sh [SECONDS [LIBRARY]]
+#
+# Installs clang and libFuzzer (libclang-rt-dev) if missing, with scripts/system.sh. New inputs go to a
 # temporary directory; the seeds in crates/gms-ffi/fuzz/corpus are only read. Prints the number
 # of inputs run and the time taken; exits non-zero on a crash or a broken invariant, leaving the
 # reproducer in the temporary directory (whose path is printed).
 set -euo pipefail
+seconds="${1:-60}" library="${2:-}"
+if [ -n "$library" ]; then
+    # A relative LIBRARY is the caller's, so it is resolved before the script moves to the root.
+    [ -f "$library" ] || { echo "fuzz_c.sh: no static library at $library" >&2; exit 2; }
+    library="$(cd "$(dirname "$library")" && pwd)/$(basename "$library")"
+fi
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-seconds="${1:-60}"
 
-if ! command -v clang >/dev/null; then
-    echo "==> installing clang"
-    apt-get update -qq
-    apt-get install -y -qq clang >/dev/null
-fi
-resource_dir="$(clang -print-resource-dir)"
-if ! ls "$resource_dir"/lib/linux/libclang_rt.fuzzer-*.a >/dev/null 2>&1; then
-    # Debian ships libFuzzer in libclang-rt-<version>-dev (a "Recommends" of clang).
-    version="$(clang -dumpversion | cut -d. -f1)"
-    echo "==> installing libclang-rt-$version-dev (libFuzzer)"
-    apt-get update -qq
-    apt-get install -y -qq "libclang-rt-$version-dev" >/dev/null
-fi
+source scripts/system.sh
+system_install clang libclang-rt-dev
 
-echo "==> cargo build --release -p gms-ffi"
-cargo build --release -p gms-ffi --quiet
-target_dir="$(cargo metadata --format-version 1 --no-deps | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
+if [ -z "$library" ]; then
+    echo "==> cargo build --release -p gms-ffi"
+    cargo build --release -p gms-ffi --quiet
+    target_dir="$(cargo metadata --format-version 1 --no-deps | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
+    library="$target_dir/release/libgms_ffi.a"
+fi
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/leuven-rt-fuzz.XXXXXX")"
 echo "==> building the harness in $work"
 clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -Icrates/gms-ffi/include crates/gms-ffi/fuzz/fuzz_c_abi.c \
-    "$target_dir/release/libgms_ffi.a" -lm -lpthread -ldl -o "$work/fuzz_c_abi"
+    "$library" -lm -lpthread -ldl -o "$work/fuzz_c_abi"
 
 mkdir -p "$work/corpus"
 echo "==> fuzzing for $seconds s"

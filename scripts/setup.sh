@@ -6,11 +6,15 @@ cd "$root"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check --upgrade "pip>=23" "maturin>=1.9,<2"
+.venv/bin/python -m pip install --quiet --disable-pip-version-check --upgrade "pip>=23" "maturin>=1.9,<2" \
+    "ziglang>=0.13"
 # An extension built before the abi3 wheel (_core.cpython-*.so) would shadow the abi3 one.
 rm -f python/leuven_rt/_core.cpython-*.so
-# Installs leuven-rt in editable mode, with its runtime dependencies, the test and lint tools and
-# the benchmarks' peers.
-# PIP_QUIET: maturin runs pip for the dependencies; its progress is not what the reader needs.
-PIP_QUIET=1 PIP_DISABLE_PIP_VERSION_CHECK=1 .venv/bin/maturin develop --release --quiet --extras test,lint,bench
+# maturin finds zig through the ziglang package of the Python it runs with.
 export PATH="$root/.venv/bin:$PATH"
+# Installs leuven-rt in editable mode (the extension built in release mode into python/), with its
+# runtime dependencies, the test and lint tools and the benchmarks' peers. The extension is built
+# exactly as scripts/dist.sh builds the wheel's (zig, manylinux2014; same target, linker and
+# profile), so that the wheel's build finds it all compiled: one release build, not two.
+MATURIN_PEP517_ARGS="--zig --compatibility manylinux2014" .venv/bin/python -m pip install --quiet \
+    --disable-pip-version-check --no-build-isolation --editable ".[test,lint,bench]"

@@ -19,6 +19,7 @@ fn set() -> gms_dyn::ParameterSet {
         sigma2: 0.4,
         fc_neg: 1.0,
         fs_neg: 1.5,
+        sigma2_neg: None,
         sigma0: None,
         elements: Some(RawElements {
             w: &w,
@@ -131,7 +132,8 @@ fn friction_state(bank: &FrictionBank) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<boo
     (z, memory, last, has_last)
 }
 
-/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core): the
+/// Many channels go through gms-batch's lanes (and the leftover ones through gms-core), or, without
+/// the `batch` feature (as the C library builds gms-dyn), all through gms-core's block calls: the
 /// forces are those of stepping each channel alone, and a rejected sample anywhere names its
 /// channel and sample and leaves every channel as it was.
 #[test]

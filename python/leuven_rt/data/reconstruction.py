@@ -32,15 +32,10 @@ from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..errors import DataError
-try:
-    from ..modelfile import Reconstruction
-except ImportError:  # TEMPORARY until the model file branch is merged
-    @dataclass(frozen=True)
-    class Reconstruction:  # type: ignore[no-redef]
-        source: Literal["velocity", "position"]
-        cutoff: float | None = None
+from ..modelfile import Reconstruction
 from .records import MotionData
 from .signals import check_cutoff, lowpass
+
 #: The acceleration's cutoff is at most this share of the Nyquist frequency.
 ACCELERATION_CUTOFF = 0.1
 

@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from ..level import PositionLevel, Ripple
-from ..modelfile import ModelFile, PositionForce, Reconstruction
+from ..level import PositionForce, PositionLevel, Ripple
+from ..modelfile import ModelFile, Reconstruction
 from ..params import Params
 from ..units import Units
 from .structure import Scales, Values
