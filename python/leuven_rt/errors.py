@@ -81,7 +81,6 @@ PYTHON_KINDS = frozenset(
         "no_motion",
         "no_sliding_motion",
         "wrong_sign",
-        "not_identifiable",
         # output paths
         "empty_path",
         "is_input",

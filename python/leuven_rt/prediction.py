@@ -108,7 +108,7 @@ class Prediction:
         from ._output import check_output
         from ._plot import figure, save
 
-        target = check_output(path, label="figure", force=force, figure=True)
+        target = check_output(path, label="figure", force=force, image=True)
         names = unit_names(self.units)
         drawing, (top, bottom) = figure(2, 1, size=(12, 7), sharex=True)
         top.plot(self.t, self.f, linewidth=0.6, label="measured f")

@@ -7,6 +7,7 @@ fit used it)."""
 
 from __future__ import annotations
 
+import ctypes
 import json
 from pathlib import Path
 
@@ -14,6 +15,7 @@ import numpy as np
 import pytest
 
 import leuven_rt as lr
+from conftest import CError, built_c_library
 from leuven_rt.data.records import MotionData
 from leuven_rt.discrepancy.hidden import make_hidden
 from leuven_rt.errors import DataError
@@ -54,6 +56,58 @@ def test_the_file_says_how_it_reconstructs_the_motion_and_predict_follows(
     if log.v is not None and reconstruction.source == "velocity":
         # Driven by the logged velocity: the same velocities as the log's.
         assert np.array_equal(prediction.v, log.v)
+
+
+def compensated(model: lr.ModelFile | Path, prediction: lr.Prediction) -> np.ndarray:
+    """The friction of a Python compensator running ``model`` along the motion ``predict``
+    drove the model with, in the mode the file's reconstruction stands for: feedforward with the
+    velocity and its positions where the file is driven by a velocity, observer with the position
+    otherwise."""
+    reconstruction = prediction.reconstruction
+    if reconstruction.source == "velocity":
+        compensator = lr.Compensator(model, prediction.dt, "feedforward", x=float(prediction.x[0]))
+        return np.array([compensator.step_trajectory(float(v), float(x)) for v, x in zip(prediction.v, prediction.x)])
+    compensator = lr.Compensator(model, prediction.dt, "observer")
+    return np.array([compensator.step(float(x)) for x in prediction.x])
+
+
+def c_compensated(text: str, prediction: lr.Prediction) -> np.ndarray:
+    """The same through the C library, which reads the file's text with the same reader."""
+    library = built_c_library()
+    data = text.encode()
+    handle, error, force = ctypes.c_void_p(), CError(), ctypes.c_double()
+    velocity = prediction.reconstruction.source == "velocity"
+    status = library.leuven_rt_compensator_create_from_json_at(
+        data, len(data), prediction.dt, 0 if velocity else 1, float(prediction.x[0]), ctypes.byref(handle),
+        ctypes.byref(error),
+    )  # fmt: skip
+    assert status == 0, error.message
+    out = np.empty(prediction.x.size)
+    try:
+        for k, (v, x) in enumerate(zip(prediction.v, prediction.x)):
+            if velocity:
+                status = library.leuven_rt_compensator_step_trajectory(handle, float(v), float(x), ctypes.byref(force))
+            else:
+                status = library.leuven_rt_compensator_step(handle, float(x), ctypes.byref(force))
+            assert status == 0
+            out[k] = force.value
+    finally:
+        library.leuven_rt_compensator_destroy(handle)
+    return out
+
+
+def test_the_compensator_running_the_written_file_gives_predicts_friction(
+    identified: tuple[MotionData, lr.Identification], tmp_path: Path
+) -> None:
+    log, result = identified
+    prediction = lr.predict(result.model, log)
+    scale = float(np.max(np.abs(prediction.friction)))
+    path = tmp_path / "model.json"
+    result.model.save(path)
+    for model in (result.model, path):
+        np.testing.assert_allclose(compensated(model, prediction), prediction.friction, rtol=0.0, atol=1e-9 * scale)
+    from_c = c_compensated(path.read_text(), prediction)
+    np.testing.assert_allclose(from_c, prediction.friction, rtol=0.0, atol=1e-9 * scale)
 
 
 def test_a_round_trip_through_the_file_predicts_the_same(

@@ -19,7 +19,7 @@ from ..errors import DataError
 from .records import MotionData
 
 #: The fewest periods of the cutoff a record must hold: the zero-phase filter's transients last
-#: about two periods at each end (docs/effects.md#signals), and far below one period per record
+#: about two periods at each end (docs/data-and-reports.md#measured-data), and far below one period per record
 #: the filter's design is singular (a LinAlgError at 1e-6 Hz) or passes nothing of the motion.
 #: The default cutoff, a tenth of the Nyquist frequency, gives ten on the shortest record.
 MIN_CUTOFF_PERIODS = 8

@@ -416,7 +416,8 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
         )
     speeds = np.abs(motion.v[moving])
     high = float(np.percentile(speeds, 99))
-    low = max(float(np.percentile(speeds, 1)), 1e-3 * high)
+    # At least an octave, so that a log at one speed still bounds Vs to an interval.
+    low = min(max(float(np.percentile(speeds, 1)), 1e-3 * high), 0.5 * high)
     force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
     stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
     lowest = max(3.0 * step, 1e-5 * stroke)

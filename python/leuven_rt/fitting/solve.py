@@ -120,7 +120,7 @@ def fit(
     root_weight = np.sqrt(target.weight[rows])
     measured = target.force[rows]
     shares = [i for i, name in enumerate(names) if name.startswith("share_")]
-    scale_row = math.sqrt(float(rows.sum())) * 0.1 * scales.force
+    scale_row = math.sqrt(float(rows.sum())) * 0.1
     cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
 
     def both(x: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -131,12 +131,13 @@ def fit(
                 result = evaluate(structure, scales, full(x), target.motion, target.tau, rows)
             except ParameterError:
                 # Outside the model's rules (a level's factor reaching 0): a large, flat residual.
-                worst = np.full(rows.sum() + bool(shares), 10.0 * scales.force)
+                worst = np.full(rows.sum() + bool(shares), 10.0)
                 cache[key] = (worst, np.zeros((worst.size, len(names))))
                 return cache[key]
             assert result.jacobian is not None
-            residual = (result.force[rows] - measured) * root_weight
-            jac = result.jacobian[:, free] * root_weight[:, None]
+            # In units of the log's force, so that the solver's tolerances mean the same at any scale.
+            residual = (result.force[rows] - measured) * (root_weight / scales.force)
+            jac = result.jacobian[:, free] * (root_weight / scales.force)[:, None]
             if shares:
                 extra = np.zeros((1, len(names)))
                 extra[0, shares] = scale_row
@@ -149,7 +150,7 @@ def fit(
         theta = full(x0)
         final = evaluate(structure, scales, theta, target.motion, target.tau, None)
         return Fitted(structure, theta, final, target.mse(final.force), 1)
-    robustly = {} if target.scale is None else {"loss": LOSS, "f_scale": target.scale}
+    robustly = {} if target.scale is None else {"loss": LOSS, "f_scale": target.scale / scales.force}
     result = least_squares(lambda x: both(x)[0], x0, jac=lambda x: both(x)[1], bounds=(low, high),
                            x_scale="jac", max_nfev=iterations, method="trf", ftol=1e-10, xtol=1e-10,
                            gtol=1e-10, **robustly)  # fmt: skip
