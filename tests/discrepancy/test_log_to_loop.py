@@ -127,7 +127,7 @@ def test_bad_settings_are_refused_naming_the_field(name: str, value: Any) -> Non
 
 def test_settings_of_another_type_are_refused() -> None:
     data = make_hidden(BASE, dt=8e-4).data
-    with pytest.raises(InputError, match=r"`settings` must be a leuven_rt\.discrepancy\.Settings or None"):
+    with pytest.raises(InputError, match=r"`settings` must be a leuven_rt\.fitting\.Settings or None"):
         lr.diagnose(data, BASE, settings=object())  # type: ignore[arg-type]
     with pytest.raises(InputError, match=r"`settings` must be"):
         lr.diagnose(data, BASE, settings={"chunks": 4})  # type: ignore[arg-type]
@@ -136,7 +136,7 @@ def test_settings_of_another_type_are_refused() -> None:
 def test_the_report_echoes_the_settings() -> None:
     chosen = Settings(chunks=8, significance=0.6, loss=0.25, joint=1.5, drift=1.2, unexplained=0.3)
     diagnosis = lr.diagnose(make_hidden(BASE, dt=8e-4, seed=3).data, BASE, settings=chosen)
-    assert diagnosis.settings is chosen
+    assert diagnosis.settings == chosen.to_dict()
     report = json.loads(diagnosis.to_json())
     assert report["settings"] == {
         "chunks": 8, "significance": 0.6, "loss": 0.25, "joint": 1.5, "drift": 1.2,
