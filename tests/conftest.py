@@ -53,8 +53,8 @@ def params_dicts(draw: st.DrawFn, linear: bool | None = None) -> dict[str, Any]:
     """Any valid parameter set: Maxwell slip with 1..32 elements, or linear ``sigma0``.
 
     n is in (0.5, 4) and is exactly 1 or 2 about half of the time; ``Fs == Fc`` and
-    asymmetric ``Fc_neg``/``Fs_neg`` both occur; ``sum(W)`` exceeds ``max(Fs, Fs_neg)`` by a
-    drawn margin.
+    asymmetric ``Fc_neg``/``Fs_neg`` both occur, and so does a ``sigma2_neg`` of its own;
+    ``sum(W)`` exceeds ``max(Fs, Fs_neg)`` by a drawn margin.
     """
     fc = draw(log_uniform(0.1, 10.0))
     fs = fc * draw(st.sampled_from([1.0]) | st.floats(1.0, 3.0))
@@ -70,6 +70,8 @@ def params_dicts(draw: st.DrawFn, linear: bool | None = None) -> dict[str, Any]:
     if draw(st.booleans()):
         p["Fc_neg"] = fc * draw(st.floats(0.3, 2.0))
         p["Fs_neg"] = p["Fc_neg"] * draw(st.floats(1.0, 3.0))
+    if draw(st.booleans()):
+        p["sigma2_neg"] = draw(st.sampled_from([0.0]) | st.floats(0.0, 10.0))
     if linear is None:
         linear = draw(st.integers(0, 3)) == 0
     if linear:

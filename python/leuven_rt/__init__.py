@@ -2,8 +2,12 @@
 
 - :class:`Params`: a validated parameter set (docs/parameters.md#keys).
 - :class:`ModelFile`: the versioned model file: friction, its position-dependent level
-  (:class:`PositionLevel`, :class:`Ripple`), measurement terms, units and the fit's report.
-- :func:`simulate`, :func:`simulate_position`: run velocity or position signals, (T,) or (B, T).
+  (:class:`PositionLevel`, :class:`Ripple`), position force, measurement terms, units, how the
+  motion signal is made from a log (:class:`Reconstruction`) and the fit's report.
+- :class:`PositionForce`: a force of the position alone (cogging, gear mesh, gravity along the
+  stroke), of the level's shape.
+- :func:`simulate`, :func:`simulate_position`: run velocity or position signals, (T,) or (B, T),
+  with a level and a position force placed by the positions.
 - :class:`LeuvenModel`: stateful channels stepped sample by sample, with checkpoints.
 - :class:`Compensator`: friction compensation for a control loop (feedforward or observer).
 - :class:`MassSystem`, :func:`simulate_mass`: a mass on the friction model driven by a force.
@@ -32,11 +36,11 @@ from typing import TYPE_CHECKING, Any
 from ._core import MAX_ELEMENTS, MAX_ITERATIONS
 from ._core import __version__ as __version__
 from .compensation import Compensator
-from .errors import DataError, DivergenceError, InputError, ParameterError
-from .level import PositionLevel, Ripple
+from .errors import DataError, DivergenceError, InputError, ModelFileError, ParameterError
+from .level import PositionForce, PositionLevel, Ripple
 from .mechanics import MassState, MassSystem, MassTrajectory, simulate_mass
 from .model import LeuvenModel, ModelState, Trace
-from .modelfile import ModelFile
+from .modelfile import ModelFile, Reconstruction
 from .online import OnlineIdentifier
 from .params import Params
 from .simulation import simulate, simulate_position
@@ -74,13 +78,16 @@ __all__ = [
     "MassSystem",
     "MassTrajectory",
     "ModelFile",
+    "ModelFileError",
     "ModelState",
     "MotionData",
     "OnlineIdentifier",
     "ParameterError",
     "Params",
+    "PositionForce",
     "PositionLevel",
     "Prediction",
+    "Reconstruction",
     "Ripple",
     "Trace",
     "__version__",

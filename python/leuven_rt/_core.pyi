@@ -1,5 +1,6 @@
 """Type stubs of the Rust extension (crates/gms-py)."""
 
+from collections.abc import Sequence
 from typing import Any, Literal, Protocol, final
 
 import numpy as np
@@ -16,14 +17,24 @@ __all__ = [
     "ConcurrentUseError",
     "CoreLevel",
     "CoreParams",
+    "CorePositionForce",
     "DivergenceError",
     "Engine",
     "InputError",
     "MassEngine",
+    "ModelFileError",
     "OnlineIdentifier",
     "ParameterError",
     "__version__",
     "check_params",
+    "model_file_from_json",
+    "model_file_from_object",
+    "model_file_load",
+    "model_file_to_json",
+    "parameter_file_from_json",
+    "parameter_file_to_json",
+    "sensitivities",
+    "simulate_sets",
     "slip_responses",
 ]
 
@@ -77,6 +88,13 @@ class InputError(_ErrorData, ValueError): ...
 class DivergenceError(_ErrorData, ValueError): ...
 class ConcurrentUseError(_ErrorData, RuntimeError): ...
 
+class ModelFileError(ParameterError):
+    """The file reader's refusal: ``field`` is the key path; ``line`` and ``column`` place a
+    syntax error."""
+
+    line: int | None
+    column: int | None
+
 class _ParamsLike(Protocol):
     """What the extension reads from a parameter set: the attributes of ``leuven_rt.Params``."""
 
@@ -98,6 +116,8 @@ class _ParamsLike(Protocol):
     def Fc_neg(self) -> float | None: ...
     @property
     def Fs_neg(self) -> float | None: ...
+    @property
+    def sigma2_neg(self) -> float | None: ...
     @property
     def sigma0(self) -> float | None: ...
     @property
@@ -123,8 +143,9 @@ class _RippleLike(Protocol):
     @property
     def sin(self) -> Any: ...
 
-class _LevelLike(Protocol):
-    """What the extension reads from a level: the attributes of ``leuven_rt.level.PositionLevel``."""
+class _SeriesLike(Protocol):
+    """What the extension reads from a level or a position force: the attributes of
+    ``leuven_rt.level.PositionLevel`` and ``leuven_rt.level.PositionForce``."""
 
     @property
     def middle(self) -> float: ...
@@ -137,15 +158,45 @@ class _LevelLike(Protocol):
 
 @final
 class CoreLevel:
-    """A position-dependent level validated once; the compensator and the position run take it."""
+    """A position-dependent level validated once; the compensator and the runs take it."""
 
-    def __new__(cls, level: _LevelLike | CoreLevel) -> Self: ...
-    def factor(self, x: float) -> float: ...
+    def __new__(cls, level: _SeriesLike | CoreLevel) -> Self: ...
+    def factor(self, x: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    @property
+    def ripples(self) -> int: ...
+
+@final
+class CorePositionForce:
+    """A position force validated once; the compensator and the runs take it."""
+
+    def __new__(cls, force: _SeriesLike | CorePositionForce) -> Self: ...
+    def force(self, x: NDArray[np.float64]) -> NDArray[np.float64]: ...
     @property
     def ripples(self) -> int: ...
 
 def check_params(params: _ParamsLike | CoreParams) -> None: ...
+def model_file_from_json(text: str) -> dict[str, Any]: ...
+def model_file_from_object(object: Any) -> dict[str, Any]: ...
+def model_file_load(path: str) -> dict[str, Any]: ...
+def model_file_to_json(object: Any) -> str: ...
+def parameter_file_from_json(text: str) -> dict[str, Any]: ...
+def parameter_file_to_json(object: Any) -> str: ...
 def slip_responses(x: NDArray[np.float64], delta: NDArray[np.float64]) -> NDArray[np.float64]: ...
+def sensitivities(
+    params: _ParamsLike | CoreParams,
+    signal: NDArray[np.float64],
+    dt: float,
+    position: bool,
+    scheme: _Scheme,
+    rows: NDArray[np.int64] | NDArray[np.uint64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], list[str]]: ...
+def simulate_sets(
+    params: Sequence[_ParamsLike | CoreParams],
+    signal: NDArray[np.float64],
+    dt: float,
+    position: bool,
+    scheme: _Scheme,
+) -> NDArray[np.float64]: ...
 
 @disjoint_base
 class Engine:
@@ -168,7 +219,19 @@ class Engine:
     ) -> NDArray[np.float64]: ...
     def _run(self, input: NDArray[np.float64], dt: float, position: bool) -> NDArray[np.float64]: ...
     def _run_position_level(
-        self, input: NDArray[np.float64], dt: float, level: _LevelLike | CoreLevel
+        self,
+        input: NDArray[np.float64],
+        dt: float,
+        level: _SeriesLike | CoreLevel | None,
+        position_force: _SeriesLike | CorePositionForce | None,
+    ) -> NDArray[np.float64]: ...
+    def _run_level(
+        self,
+        v: NDArray[np.float64],
+        x: NDArray[np.float64],
+        dt: float,
+        level: _SeriesLike | CoreLevel | None,
+        position_force: _SeriesLike | CorePositionForce | None,
     ) -> NDArray[np.float64]: ...
     def _run_position_deflection(
         self, x: NDArray[np.float64], dt: float
@@ -191,12 +254,15 @@ class CompensatorEngine:
         params: _ParamsLike | CoreParams,
         dt: float,
         mode: _Mode,
-        level: _LevelLike | CoreLevel | None = None,
+        level: _SeriesLike | CoreLevel | None = None,
+        position_force: _SeriesLike | CorePositionForce | None = None,
+        x: float | None = None,
     ) -> Self: ...
     def step(self, input: float) -> float: ...
+    def step_trajectory(self, v: float, x: float) -> float: ...
     def set_position(self, x: float) -> None: ...
     @property
-    def position(self) -> float: ...
+    def position(self) -> float | None: ...
     def set_params(self, params: _ParamsLike | CoreParams) -> None: ...
     def reset(self) -> None: ...
     @property

@@ -8,11 +8,15 @@ and with a level one sincos per ripple).
 ``set_params`` swaps parameters between samples without a jump in the output: the hysteresis
 force carries over (see crates/gms-core/src/compensator.rs).
 
-With a position-dependent ``level`` (:class:`~leuven_rt.level.PositionLevel`), the output is
-``level.factor(x)·(F − sigma2·v) + sigma2·v``. In observer mode x is the input; in feedforward
-mode the compensator integrates the desired velocity, x ← x + v·dt, from the position given to
-``set_position`` (0 until then), so a feedforward compensator with a level needs the axis's
-start position (docs/model.md#position-dependent-level).
+With a position-dependent ``level`` (:class:`~leuven_rt.level.PositionLevel`) and a
+``position_force`` (:class:`~leuven_rt.level.PositionForce`), the output is
+``level.factor(x)·(F − σ2(v)·v) + σ2(v)·v + position_force.force(x)``. In observer mode x is the
+input. In feedforward mode ``step_trajectory(v, x)`` takes the desired position with the desired
+velocity (a trajectory generator gives both), and ``step(v)`` integrates the desired velocity,
+x ← x + v·dt, from the axis's start position ``x`` given at construction (or to
+``set_position``): a feedforward compensator with a level or a position force and no start
+position is refused, since its terms would be placed from x = 0, out of phase with the machine
+(docs/model.md#position-dependent-level).
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from . import _core
 from ._checks import as_step
 from ._typing import Mode
 from .errors import InputError, shown
-from .level import PositionLevel, core_level
+from .level import PositionForce, PositionLevel, core_level, core_position_force
 from .params import Params, ParamsLike, as_params, core_params
 
 MODES: tuple[Mode, ...] = ("feedforward", "observer")
@@ -35,9 +39,13 @@ class Compensator(_core.CompensatorEngine):
     ``step(input) -> float``: the force for this sample (the fast path for a Python loop; a
     non-finite input raises :class:`InputError` and leaves state and ``output`` unchanged).
     ``set_params(params)``: new parameters of the same kind and number of elements.
-    ``reset()``: back to rest. ``output``: the last force returned. ``level``: the
-    position-dependent level or None; ``set_position(x)`` and ``position``: the position that
-    feedforward mode integrates the desired velocity from (see the module documentation).
+    ``step_trajectory(v, x)``: the force for one sample of a planned trajectory, the velocity
+    driving the model and the position placing the level and the position force.
+    ``reset()``: back to rest. ``output``: the last force returned. ``level``,
+    ``position_force``: the position-dependent terms or None; ``x`` (at construction),
+    ``set_position(x)`` and ``position``: the axis's position, from which feedforward mode places
+    them (see the module documentation; required in feedforward mode with a term, else
+    :class:`InputError` naming ``x``).
 
     A compensator's calls hold the GIL, so threads take turns; should two ever overlap (a
     free-threaded Python), the second raises :class:`~leuven_rt.errors.ConcurrentUseError`.
@@ -45,6 +53,7 @@ class Compensator(_core.CompensatorEngine):
 
     _params: Params
     _level: PositionLevel | None
+    _position_force: PositionForce | None
 
     def __new__(
         cls,
@@ -52,6 +61,9 @@ class Compensator(_core.CompensatorEngine):
         dt: float,
         mode: Mode = "feedforward",
         level: PositionLevel | None = None,
+        position_force: PositionForce | None = None,
+        *,
+        x: float | None = None,
     ) -> Compensator:
         if mode not in MODES:
             raise InputError(
@@ -63,13 +75,22 @@ class Compensator(_core.CompensatorEngine):
             )
         given = as_params(params)
         validated_level = None if level is None else core_level(level)
-        # The engine gets the set and the level validated when they were built, and does not
-        # check them again; gms-core checks the value of dt.
+        validated_force = None if position_force is None else core_position_force(position_force)
+        # The engine gets the set and the terms validated when they were built, and does not
+        # check them again; gms-core checks the values of dt and x, and that feedforward terms
+        # have their start position.
         engine = super().__new__(
-            cls, core_params(given), as_step(dt), cast("Mode", str(mode)), validated_level
+            cls,
+            core_params(given),
+            as_step(dt),
+            cast("Mode", str(mode)),
+            validated_level,
+            validated_force,
+            x,
         )
         engine._params = given
         engine._level = level
+        engine._position_force = position_force
         return engine
 
     # Narrower than the engine's on purpose: a Params or a mapping of its keys.
@@ -88,6 +109,11 @@ class Compensator(_core.CompensatorEngine):
     def level(self) -> PositionLevel | None:
         """The position-dependent level, or None."""
         return self._level
+
+    @property
+    def position_force(self) -> PositionForce | None:
+        """The position force, or None."""
+        return self._position_force
 
     def __repr__(self) -> str:
         return f"Compensator(mode={self.mode!r}, dt={self.dt!r}, elements={self.elements})"

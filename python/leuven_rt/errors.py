@@ -1,10 +1,11 @@
 """Every exception and warning of leuven_rt, and the data each error carries.
 
-The four the Rust extension raises (:class:`ParameterError`, :class:`InputError`,
-:class:`DivergenceError`, :class:`ConcurrentUseError`) are defined in the extension, so that the
-core and the Python modules raise the same classes; the rest are Python-only and subclass them or
-``ValueError``, so that ``except ValueError`` (or ``except InputError`` for bad data) catches every
-refusal.
+The five the Rust extension raises (:class:`ParameterError`, :class:`InputError`,
+:class:`DivergenceError`, :class:`ConcurrentUseError`, and the file reader's
+:class:`ModelFileError`, a :class:`ParameterError` that also carries ``line`` and ``column``) are
+defined in the extension, so that the core and the Python modules raise the same classes; the rest
+are Python-only and subclass them or ``ValueError``, so that ``except ValueError`` (or ``except
+InputError`` for bad data) catches every refusal.
 
 Every error carries its data as attributes, whoever raised it (docs/errors.md#error-data):
 ``kind`` (what rule was broken: gms-core's variant in snake case, such as ``"not_finite"``, or a
@@ -25,7 +26,14 @@ from typing import Any
 
 import numpy as np
 
-from ._core import ERROR_KINDS, ConcurrentUseError, DivergenceError, InputError, ParameterError
+from ._core import (
+    ERROR_KINDS,
+    ConcurrentUseError,
+    DivergenceError,
+    InputError,
+    ModelFileError,
+    ParameterError,
+)
 
 __all__ = [
     "DATA",
@@ -35,6 +43,7 @@ __all__ = [
     "DivergenceError",
     "ErrorClass",
     "InputError",
+    "ModelFileError",
     "OutputError",
     "ParameterError",
     "ResamplingWarning",
@@ -53,18 +62,12 @@ DATA = ("kind", "field", "value", "bound", "index", "sample", "channel", "expect
 PYTHON_KINDS = frozenset(
     {
         # arguments and parameters
-        "wrong_type",
         "not_integer",
-        "missing_key",
-        "unknown_key",
-        "repeated",
         "malformed",
         "not_applicable",
         "units_mismatch",
         # files
-        "not_json",
         "not_text",
-        "unreadable_file",
         "no_such_file",
         "empty_file",
         "no_header",
@@ -72,7 +75,6 @@ PYTHON_KINDS = frozenset(
         # measured data
         "missing_column",
         "too_few",
-        "not_increasing",
         "not_uniform",
         "gap",
         "implausible_units",
@@ -93,8 +95,8 @@ PYTHON_KINDS = frozenset(
     }
 )
 
-#: Every kind an error of the package can have: the extension's (gms-core's rules, gms-dyn's and
-#: the bindings' own) and the Python modules'.
+#: Every kind an error of the package can have: the extension's (gms-core's rules, gms-dyn's,
+#: gms-fit's, gms-file's and the bindings' own) and the Python modules'.
 KINDS = frozenset(ERROR_KINDS) | PYTHON_KINDS
 
 

@@ -16,7 +16,7 @@ from typing import Any
 
 from . import _core
 from ._checks import real_array
-from .errors import ParameterError, data_of, shown
+from .errors import ModelFileError, ParameterError, data_of, shown
 
 #: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
 #: of :class:`Params`; looked up by name so that it types as ``Any`` whether or not _core.pyi lists it.
@@ -90,8 +90,10 @@ class Params:
     most ``MAX_ELEMENTS``) or as a linear spring ``sigma0`` (LuGre when ``n = 1``). ``W`` and
     ``Delta`` may be given as lists or tuples of real numbers (1-D arrays are accepted too); they
     are stored as tuples of floats.
-    ``Fc_neg``/``Fs_neg`` default to ``Fc``/``Fs``. Raises :class:`ParameterError` naming the
-    key and showing what was expected and what came.
+    ``Fc_neg``/``Fs_neg``/``sigma2_neg`` (the levels and the viscous coefficient for v < 0)
+    default to ``Fc``/``Fs``/``sigma2``; a value given is kept and written to the parameter file
+    even when it equals its default, so that the file says what was given. Raises
+    :class:`ParameterError` naming the key and showing what was expected and what came.
     """
 
     Fc: float
@@ -107,12 +109,13 @@ class Params:
     """Maxwell-slip break deflections [m]; stored as a tuple of floats."""
     Fc_neg: float | None = None
     Fs_neg: float | None = None
+    sigma2_neg: float | None = None
     sigma0: float | None = None
 
     def __post_init__(self) -> None:
         for key in ("Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2"):
             object.__setattr__(self, key, _real(key, getattr(self, key)))
-        for key in ("Fc_neg", "Fs_neg", "sigma0"):
+        for key in ("Fc_neg", "Fs_neg", "sigma2_neg", "sigma0"):
             if getattr(self, key) is not None:
                 object.__setattr__(self, key, _real(key, getattr(self, key)))
         if (self.W is None) != (self.Delta is None):
@@ -154,6 +157,11 @@ class Params:
         """The static level for v < 0 (``Fs_neg``, or ``Fs`` when not given)."""
         return self.Fs if self.Fs_neg is None else self.Fs_neg
 
+    @property
+    def sigma2_negative(self) -> float:
+        """The viscous coefficient for v < 0 (``sigma2_neg``, or ``sigma2`` when not given)."""
+        return self.sigma2 if self.sigma2_neg is None else self.sigma2_neg
+
     def to_dict(self) -> dict[str, Any]:
         """The parameter-file form: keys of docs/parameters.md#keys, unset optional keys left out."""
         out: dict[str, Any] = {}
@@ -194,31 +202,21 @@ class Params:
         return cls(**mapping)
 
     def to_json(self) -> str:
-        """The parameter file as JSON text."""
-        import json  # here, not at the top: `import leuven_rt` stays light
-
-        return json.dumps(self.to_dict(), indent=2)
+        """The parameter file as JSON text, written by gms-file (the writer of the model file)."""
+        return _core.parameter_file_to_json(self.to_dict())
 
     @classmethod
     def from_json(cls, text: str) -> Params:
-        """Parses JSON text of a parameter file."""
-        import json
-
-        try:
-            mapping = json.loads(text)
-        except (TypeError, json.JSONDecodeError, UnicodeDecodeError) as error:
+        """Parses JSON text of a parameter file with gms-file, the reader the C library uses: a
+        refusal raises :class:`~leuven_rt.errors.ModelFileError` naming the key."""
+        if not isinstance(text, str):
             raise ParameterError(
-                f"parameters must be JSON text of an object: {error}", kind="not_json"
-            ) from None
-        except RecursionError:
-            raise ParameterError(
-                "parameters must be JSON text of an object: nested too deeply", kind="not_json"
-            ) from None
-        except ValueError as error:  # e.g. an integer of more digits than Python converts
-            raise ParameterError(
-                f"parameters must be JSON text of an object: {error}", kind="not_json"
-            ) from None
-        return cls.from_dict(mapping)
+                f"a parameter file's text must be a str, got {type(text).__name__}",
+                kind="wrong_type",
+                field="text",
+                value=text,
+            )
+        return cls(**_core.parameter_file_from_json(text))
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Writes the parameter file, atomically: a failure leaves no partial file behind."""
@@ -229,7 +227,8 @@ class Params:
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Params:
         """Reads a parameter file (UTF-8 JSON); a file that cannot be read or decoded raises
-        :class:`ParameterError` naming it."""
+        :class:`ParameterError` naming it; a text the reader refuses raises its
+        :class:`~leuven_rt.errors.ModelFileError` under the file's name, with the same data."""
         try:
             with open(path, encoding="utf-8") as file:
                 text = file.read()
@@ -245,6 +244,11 @@ class Params:
             ) from None
         try:
             return cls.from_json(text)
+        except ModelFileError as error:
+            # The reader's class, and where a syntax error is, are kept under the longer message.
+            again = ModelFileError(f"{path}: {error}", **data_of(error))
+            again.line, again.column = error.line, error.column
+            raise again from None
         except ParameterError as error:
             raise ParameterError(f"{path}: {error}", **data_of(error)) from None
 

@@ -4,12 +4,13 @@ The model is run along the log's own motion, the way a compensator in observer m
 it: the position is the zero-phase filtered position of the log (the derivative estimate the
 identification uses, :func:`leuven_rt.data.estimate_derivatives`, with its default cutoff), and
 
-    friction = factor(x)·(F − σ2·v) + σ2·v,    f_model = friction + offset + inertia·a,
+    friction = factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x),    f_model = friction + offset + inertia·a,
 
 where F is the plain model along x (:func:`leuven_rt.simulate_position`), v the model's own
-velocity (v₀ = 0, vₖ = (xₖ − xₖ₋₁)/dt), factor(x) the position-dependent level (1 without one)
-and a the filtered acceleration. ``friction`` is what a compensator adds to the command;
-``f_model`` adds the measurement terms, to compare with the measured force ``f``.
+velocity (v₀ = 0, vₖ = (xₖ − xₖ₋₁)/dt), factor(x) the position-dependent level (1 without one),
+r(x) the position force (0 without one) and a the filtered acceleration. ``friction`` is what a
+compensator adds to the command; ``f_model`` adds the measurement terms, to compare with the
+measured force ``f``.
 """
 
 from __future__ import annotations
@@ -122,11 +123,13 @@ def predict(
 
 
 def model_forces(model: ModelFile, x: FloatArray, a: FloatArray, dt: float) -> tuple[FloatArray, FloatArray]:
-    """The friction along the filtered position ``x`` (with the level,
+    """The friction along the filtered position ``x`` (with the level and the position force,
     docs/model.md#position-dependent-level: the run a compensator in observer mode makes over the
     same positions) and the model's whole force, friction plus the measurement terms at the
     acceleration ``a``."""
-    friction = simulate_position(model.friction, x, dt, level=model.level)
+    friction = simulate_position(
+        model.friction, x, dt, level=model.level, position_force=model.position_force
+    )
     return friction, friction + model.measurement_force(a)
 
 

@@ -1,34 +1,88 @@
-"""Whole signals through the Rust core: velocity or position input, one or many channels."""
+"""Whole signals through the Rust core: velocity or position input, one or many channels, with
+the position-dependent terms (a level and a position force) where they are given."""
 
 from __future__ import annotations
+
+from typing import Any
 
 from numpy.typing import ArrayLike
 
 from . import _core
 from ._checks import as_signal, as_step, check_scheme
 from ._typing import FloatArray, Scheme
-from .level import PositionLevel, core_level
+from .errors import InputError
+from .level import PositionForce, PositionLevel, core_level, core_position_force
 from .params import ParamsLike, core_params
 
 
-def _run(params: ParamsLike, signal: ArrayLike, name: str, dt: float, scheme: Scheme) -> FloatArray:
-    validated = core_params(params)
-    array, one_dimensional = as_signal(signal, name)
-    step = as_step(dt)
-    engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
-    # gms-core scans the signal (naming channel and sample of a non-finite value) and checks dt.
-    out = engine._run(array, step, name == "x")
-    return out[0] if one_dimensional else out
+def _terms(level: PositionLevel | None, position_force: PositionForce | None) -> tuple[Any, Any]:
+    """The validated level and position force (each None when not given)."""
+    return (
+        None if level is None else core_level(level),
+        None if position_force is None else core_position_force(position_force),
+    )
 
 
-def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: Scheme = "implicit") -> FloatArray:
+def simulate(
+    params: ParamsLike,
+    v: ArrayLike,
+    dt: float,
+    scheme: Scheme = "implicit",
+    *,
+    x: ArrayLike | None = None,
+    level: PositionLevel | None = None,
+    position_force: PositionForce | None = None,
+) -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
     Returns the force with the shape of ``v``. The channels run in Rust with the GIL released,
     several at once when B > 1.
+
+    With a position-dependent ``level`` or a ``position_force``
+    (docs/model.md#position-dependent-level), the positions ``x`` (the shape of ``v``) place them:
+    each force is ``level.factor(x)·(F − σ2(v)·v) + σ2(v)·v + position_force.force(x)``, F the
+    force without them. This is how a log with a measured velocity column drives the model: the
+    velocity is the model's input, the position only places the terms (the model's state evolves
+    as without them). ``x`` is needed with either term and refused without one.
     """
-    return _run(params, v, "v", dt, scheme)
+    validated = core_params(params)
+    array, one_dimensional = as_signal(v, "v")
+    step = as_step(dt)
+    if x is None:
+        if level is not None or position_force is not None:
+            given = "level" if level is not None else "position_force"
+            raise InputError(
+                f"`{given}` is placed by the positions `x`: give `x`, the shape of `v`",
+                kind="missing",
+                field="x",
+            )
+        engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
+        # gms-core scans the signal (naming channel and sample of a non-finite value) and checks dt.
+        out = engine._run(array, step, False)
+        return out[0] if one_dimensional else out
+    if level is None and position_force is None:
+        raise InputError(
+            "`x` places a `level` or a `position_force`, and neither was given: leave `x` out to "
+            "run the velocities alone",
+            kind="not_applicable",
+            field="x",
+        )
+    positions, positions_one_dimensional = as_signal(x, "x")
+    if positions.shape != array.shape:
+        shown = [a.shape[1:] if flat else a.shape for a, flat in ((array, one_dimensional),
+                 (positions, positions_one_dimensional))]  # fmt: skip
+        raise InputError(
+            f"`x` must have the shape of `v`, {shown[0]}, got {shown[1]}",
+            kind="shape",
+            field="x",
+            expected=shown[0],
+            got=shown[1],
+        )
+    validated_level, validated_force = _terms(level, position_force)
+    engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
+    out = engine._run_level(array, positions, step, validated_level, validated_force)
+    return out[0] if one_dimensional else out
 
 
 def simulate_position(
@@ -38,19 +92,21 @@ def simulate_position(
     scheme: Scheme = "implicit",
     *,
     level: PositionLevel | None = None,
+    position_force: PositionForce | None = None,
 ) -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample.
 
-    With a position-dependent ``level`` (docs/model.md#position-dependent-level), each force is
-    ``level.factor(x)·(F − sigma2·v) + sigma2·v``, F the force without it; the model's state
-    evolves as without the level.
+    With a position-dependent ``level`` or a ``position_force``
+    (docs/model.md#position-dependent-level), each force is
+    ``level.factor(x)·(F − σ2(v)·v) + σ2(v)·v + position_force.force(x)``, F the force without
+    them; the model's state evolves as without them.
     """
-    if level is None:
-        return _run(params, x, "x", dt, scheme)
-    validated_level = core_level(level)
     validated = core_params(params)
     array, one_dimensional = as_signal(x, "x")
     step = as_step(dt)
     engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
-    out = engine._run_position_level(array, step, validated_level)
+    if level is None and position_force is None:
+        out = engine._run(array, step, True)
+    else:
+        out = engine._run_position_level(array, step, *_terms(level, position_force))
     return out[0] if one_dimensional else out

@@ -1,8 +1,9 @@
 """The Rust core (`leuven_rt.simulate`, `simulate_position`) against the numpy reference.
 
 Agreement is measured as the max relative error over the run, max|a − b| / max|b| (a: Rust,
-b: reference), and must be ≤ 1e-12, for random valid parameter sets and for velocity signals with
-reversals, plateaus and exact zeros.
+b: reference), and must be ≤ 1e-12, for random valid parameter sets (a viscous coefficient of
+their own for v < 0 included) and for velocity signals with reversals, plateaus and exact zeros,
+with and without the position-dependent terms (a level and a position force).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from hypothesis import strategies as st
 
 import leuven_rt
 from conftest import LUGRE, MAXWELL, log_uniform, max_relative_error, params_dicts, velocity_signals
-from leuven_rt import DivergenceError, reference
+from leuven_rt import DivergenceError, PositionForce, PositionLevel, Ripple, reference
 
 TOLERANCE = 1e-12
 SETTINGS = settings(
@@ -84,6 +85,64 @@ def test_implicit_rust_matches_reference(p: dict[str, Any], data: st.DataObject,
     dt = data.draw(log_uniform(1e-5, 1e-3), label="dt")
     scale = data.draw(log_uniform(1e-4, 1e-1), label="scale")
     compare(p, signals(data, p, scale), dt, "implicit", kind, data)
+
+
+@st.composite
+def terms(draw: st.DrawFn) -> tuple[PositionLevel | None, PositionForce | None]:
+    """A level, a position force, or both: a trend and up to two ripples of up to eight harmonics,
+    periods of 0.2–1 (so that |x/P| stays below 20 at the positions below, where the oracle's
+    unreduced phase agrees with gms-core's to 1e-12), the level's amplitudes adding up to < 1 and
+    the force's to up to 5 N."""
+
+    def shape(total: float) -> dict[str, Any]:
+        count = draw(st.integers(0, 2))
+        harmonics = [draw(st.integers(1, 8)) for _ in range(count)]
+        raw = draw(
+            st.lists(st.floats(-1.0, 1.0), min_size=2 + 2 * sum(harmonics), max_size=2 + 2 * sum(harmonics))
+        )
+        magnitude = sum(abs(c) for c in raw)
+        c = [value * total / magnitude for value in raw] if magnitude > 0 else raw
+        ripples, at = [], 2
+        for k in harmonics:
+            period = draw(st.floats(0.2, 1.0))
+            ripples.append(Ripple(period, tuple(c[at : at + k]), tuple(c[at + k : at + 2 * k])))
+            at += 2 * k
+        middle, half_stroke = draw(st.floats(-1.0, 1.0)), draw(st.floats(0.01, 2.0))
+        return dict(middle=middle, half_stroke=half_stroke, trend=(c[0], c[1]), ripples=tuple(ripples))
+
+    which = draw(st.sampled_from(["level", "force", "both"]))
+    level = PositionLevel(**shape(draw(st.floats(0.0, 0.99)))) if which != "force" else None
+    force = PositionForce(**shape(draw(st.floats(0.0, 5.0)))) if which != "level" else None
+    return level, force
+
+
+@SETTINGS
+@given(p=params_dicts(), data=st.data(), placed=terms())
+@pytest.mark.parametrize("kind", ["velocity", "position"])
+def test_rust_matches_reference_with_the_position_terms(
+    p: dict[str, Any],
+    data: st.DataObject,
+    placed: tuple[PositionLevel | None, PositionForce | None],
+    kind: str,
+) -> None:
+    """Implicit scheme, any valid parameters, with a level, a position force or both: position
+    input, and velocity input with the positions ``x`` placing the terms (a log with a measured
+    velocity). Rust and the reference agree to max|a − b| / max|b| ≤ 1e-12."""
+    level, force = placed
+    dt = data.draw(log_uniform(1e-5, 1e-3), label="dt")
+    v = signals(data, p, data.draw(log_uniform(1e-4, 1e-1), label="scale"))
+    x = data.draw(st.sampled_from([0.0, 0.25, -3.0]), label="x0") + np.cumsum(v, axis=-1) * dt
+    if kind == "position":
+        got = leuven_rt.simulate_position(p, x, dt, level=level, position_force=force)
+        expected = reference.simulate_position(p, x, dt, level=level, position_force=force)
+    else:
+        # The velocity need not be the positions' difference: the two are separate inputs.
+        v = 1.3 * v
+        got = leuven_rt.simulate(p, v, dt, x=x, level=level, position_force=force)
+        expected = reference.simulate(p, v, dt, x=x, level=level, position_force=force)
+    assert got.shape == x.shape
+    error = max_relative_error(got, expected)
+    assert error <= TOLERANCE, f"max relative error {error:.3g}"
 
 
 @SETTINGS

@@ -27,6 +27,7 @@ from leuven_rt.errors import (
     DataError,
     DivergenceError,
     InputError,
+    ModelFileError,
     OutputError,
     ParameterError,
     StackOverflowError,
@@ -166,6 +167,23 @@ def test_the_classes_are_the_extensions() -> None:
     assert issubclass(DivergenceError, ValueError)
 
 
+def test_the_file_readers_class_is_a_parameter_error_of_the_extension() -> None:
+    """ModelFileError is made beside the other four (a ParameterError subclass): the same data,
+    and ``line`` and ``column`` of a syntax error, kept through pickling."""
+    assert _core.ModelFileError is ModelFileError is lr.ModelFileError
+    assert ModelFileError.__module__ == "leuven_rt"
+    assert issubclass(ModelFileError, ParameterError)
+    assert all(getattr(ModelFileError, name) is None for name in (*DATA, "line", "column"))
+    error = refusal(lambda: lr.ModelFile.from_json('{"format": "leuven-rt model",\n "version": }'))
+    assert type(error) is ModelFileError
+    assert (error.kind, error.field, error.line, error.column) == ("not_json", None, 2, 13)
+    again = pickle.loads(pickle.dumps(error))
+    assert type(again) is ModelFileError and str(again) == str(error)
+    assert (again.kind, again.line, again.column) == ("not_json", 2, 13)
+    made = ModelFileError("m", kind="unknown_key", field="level.slope")
+    assert (made.kind, made.field, made.line) == ("unknown_key", "level.slope", None)
+
+
 def refusal(call: Any) -> Any:
     with pytest.raises(ValueError) as raised:
         call()
@@ -274,6 +292,49 @@ RUST = [
         ParameterError,
         {"kind": "level_too_deep", "field": None, "bound": 1.0},
         id="deep",
+    ),
+    pytest.param(
+        lambda: lr.PositionForce(ripples=(lr.level.Ripple(1e-12, (0.1,), (0.0,)),)),
+        ParameterError,
+        # The bound is the finest period resolved: 2^20 ulps of max(|middle| + half_stroke, 1) = 1.
+        {
+            "kind": "phase_unresolved",
+            "field": "ripples[0].period",
+            "value": 1e-12,
+            "bound": 2.0**-32,
+            "index": 0,
+        },
+        id="period-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.level.PositionLevel(half_stroke=1e-300),
+        ParameterError,
+        {"kind": "phase_unresolved", "field": "half_stroke", "value": 1e-300, "bound": 2.0**-32},
+        id="half-stroke-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.level.PositionLevel(middle=1e12, half_stroke=1e-6),
+        ParameterError,
+        {"kind": "phase_unresolved", "field": "middle", "value": 1e12, "bound": None},
+        id="middle-unresolved",
+    ),
+    pytest.param(
+        lambda: lr.Params(**maxwell(sigma2_neg=-1.0)),
+        ParameterError,
+        {"kind": "negative", "field": "sigma2_neg", "value": -1.0},
+        id="sigma2_neg",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))),
+        InputError,
+        {"kind": "missing", "field": "x", "value": None},
+        id="start-position",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, "observer").step_trajectory(0.0, np.nan),
+        InputError,
+        {"kind": "not_finite", "field": "x", "sample": 0},
+        id="step-trajectory",
     ),
     pytest.param(
         lambda: lr.simulate(STIFF, DIVERGING, 1e-2, "explicit"),
@@ -390,17 +451,91 @@ PYTHON = [
     ),
     pytest.param(
         lambda: lr.ModelFile.from_dict(
-            {"format": "leuven-rt model", "version": 1, "friction": {**MAXWELL, "Fs": 0.5}}
+            {"format": "leuven-rt model", "version": 1, "units": "linear", "friction": {**MAXWELL, "Fs": 0.5}}
         ),
-        ParameterError,
-        {"kind": "static_below_coulomb", "field": "friction.Fs", "value": 0.5},
+        ModelFileError,
+        {"kind": "static_below_coulomb", "field": "friction.Fs", "value": 0.5, "bound": 1.0},
         id="model-file-friction",
     ),
     pytest.param(
-        lambda: lr.ModelFile.from_dict({"format": "leuven-rt model", "version": 2, "friction": MAXWELL}),
-        ParameterError,
-        {"kind": "invalid_choice", "field": "version", "value": 2, "expected": 1},
+        lambda: lr.ModelFile.from_dict({"format": "leuven-rt model", "version": 3, "friction": MAXWELL}),
+        ModelFileError,
+        {"kind": "invalid_choice", "field": "version", "line": None},
         id="version",
+    ),
+    pytest.param(
+        lambda: lr.simulate(MAXWELL, [0.0, 0.0], DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))),
+        InputError,
+        {"kind": "missing", "field": "x"},
+        id="simulate-no-x",
+    ),
+    pytest.param(
+        lambda: lr.simulate(MAXWELL, [0.0, 0.0], DT, x=[0.0, 0.0]),
+        InputError,
+        {"kind": "not_applicable", "field": "x"},
+        id="simulate-x-alone",
+    ),
+    pytest.param(
+        lambda: lr.simulate(
+            MAXWELL, [0.0, 0.0], DT, x=[0.0], position_force=lr.PositionForce(trend=(1.0, 0.0))
+        ),
+        InputError,
+        {"kind": "shape", "field": "x", "expected": (2,), "got": (1,)},
+        id="simulate-x-shape",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(
+            MAXWELL, [0.0, 0.0], DT, level=lr.level.PositionLevel(trend=(0.1, 0.0))
+        ),
+        InputError,
+        {"kind": "missing", "field": "x"},
+        id="reference-no-x",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(MAXWELL, [0.0, 0.0], DT, x=[0.0, 0.0]),
+        InputError,
+        {"kind": "not_applicable", "field": "x"},
+        id="reference-x-alone",
+    ),
+    pytest.param(
+        lambda: lr.reference.simulate(
+            MAXWELL, [0.0, 0.0], DT, x=[0.0], position_force=lr.PositionForce(trend=(1.0, 0.0))
+        ),
+        InputError,
+        {"kind": "shape", "field": "x", "expected": (1, 2), "got": (1, 1)},
+        id="reference-x-shape",
+    ),
+    pytest.param(
+        lambda: lr.PositionForce.from_dict([]),  # type: ignore[arg-type]
+        ParameterError,
+        {"kind": "wrong_type", "value": []},
+        id="position-force-list",
+    ),
+    pytest.param(
+        lambda: lr.PositionForce.from_dict({"amplitude": 1.0}),
+        ParameterError,
+        {"kind": "unknown_key", "field": "amplitude", "got": ["amplitude"]},
+        id="position-force-key",
+    ),
+    pytest.param(
+        lambda: lr.Compensator(MAXWELL, DT, position_force="cogging", x=0.0),  # type: ignore[arg-type]
+        ParameterError,
+        {"kind": "wrong_type", "field": "position_force", "value": "cogging"},
+        id="position-force-type",
+    ),
+    pytest.param(
+        lambda: lr.ModelFile.from_dict(
+            {
+                "format": "leuven-rt model",
+                "version": 1,
+                "units": "linear",
+                "friction": MAXWELL,
+                "level": {"ripples": [{"period": 1e-12, "cos": [0.1], "sin": [0.0]}]},
+            }
+        ),
+        ModelFileError,
+        {"kind": "phase_unresolved", "field": "level.ripples[0].period", "value": 1e-12, "index": 0},
+        id="model-file-phase",
     ),
     pytest.param(
         lambda: as_motion_data({"t": np.arange(50.0), "f": np.zeros(50)}),
@@ -434,8 +569,13 @@ def test_a_file_error_keeps_its_data_under_the_file_name(tmp_path: Path) -> None
         '{"Fc": 1.0, "Fs": 0.5, "Vs": 1e-3, "delta": 2.0, "n": 2.0, "sigma0": 1e5}', encoding="utf-8"
     )
     error = refusal(lambda: lr.Params.load(path))
-    assert str(error).startswith(f"{path}: `Fs` must be >= `Fc`")
+    assert str(error).startswith(f"{path}: `Fs`: `Fs` must be >= `Fc`")
     assert (error.kind, error.field, error.value) == ("static_below_coulomb", "Fs", 0.5)
+    assert type(error) is ModelFileError
+    path.write_text('{"Fc": 1.0,\n "Fs": }', encoding="utf-8")
+    syntax = refusal(lambda: lr.Params.load(path))
+    assert type(syntax) is ModelFileError and str(syntax).startswith(f"{path}: not JSON")
+    assert (syntax.kind, syntax.field, syntax.line, syntax.column) == ("not_json", None, 2, 8)
     missing = refusal(lambda: lr.Params.load(tmp_path / "missing.json"))
     assert (missing.kind, missing.value) == ("unreadable_file", str(tmp_path / "missing.json"))
 
@@ -472,3 +612,40 @@ def test_a_second_thread_gets_the_data_of_concurrent_use() -> None:
     error = errors[0]
     assert (error.kind, error.field) == ("concurrent_use", None)
     assert str(error).startswith("this LeuvenModel is in use by another thread")
+
+
+class _Reentrant:
+    """A number whose conversion calls ``call`` while the compensator is inside ``step``."""
+
+    def __init__(self, call: Any) -> None:
+        self.call, self.raised = call, None
+
+    def __float__(self) -> float:
+        try:
+            self.call()
+        except ConcurrentUseError as error:
+            self.raised = error
+        return 0.0
+
+
+@pytest.mark.parametrize(
+    "method",
+    [
+        lambda c: c.step_trajectory(0.0, 0.0),
+        lambda c: c.set_position(0.0),
+        lambda c: c.position,
+        lambda c: c.reset(),
+    ],
+    ids=["step_trajectory", "set_position", "position", "reset"],
+)
+def test_the_compensators_calls_borrow_through_the_guard(method: Any) -> None:
+    """A call that meets the compensator inside another of its calls gets ConcurrentUseError with
+    its kind, never PyO3's bare 'Already borrowed' RuntimeError: every method borrows through
+    gms-py's guard (here the other call is ``step``, which holds the compensator while it converts
+    its argument)."""
+    compensator = lr.Compensator(MAXWELL, DT, position_force=lr.PositionForce(trend=(1.0, 0.0)), x=0.0)
+    inner = _Reentrant(lambda: method(compensator))
+    compensator.step(inner)  # type: ignore[arg-type]
+    assert isinstance(inner.raised, ConcurrentUseError)
+    assert (inner.raised.kind, inner.raised.field) == ("concurrent_use", None)
+    assert compensator.position == 0.0  # nothing changed; the outer step moved at v = 0

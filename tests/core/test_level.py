@@ -1,7 +1,7 @@
 """The position-dependent level (docs/model.md#position-dependent-level) through the Python face:
-types coerced by Python, values refused by gms-core naming the field, the factor of Rust against
-numpy's formula, the compensator and ``simulate_position`` against F_level = factor(x)·(F − σ2·v)
-+ σ2·v, and the numpy reference against Rust."""
+types coerced by Python, values refused by gms-core naming the field, the factor (gms-core's)
+against the oracle's numpy formula, the compensator and ``simulate_position`` against
+F_level = factor(x)·(F − σ2(v)·v) + σ2(v)·v, and the numpy reference against Rust."""
 
 from __future__ import annotations
 
@@ -162,7 +162,7 @@ def test_rust_factor_is_numpys_formula(
         ),
     )
     x = cycles * min(periods)
-    rust, numpy = core_level(level).factor(x), float(level.factor(x))
+    rust, numpy = float(level.factor(x)), 1.0 + float(reference.position_series(level, x))
     assert rust > 0.0
     assert abs(rust - numpy) <= 1e-12 * abs(numpy)
 
@@ -182,16 +182,18 @@ def test_far_positions_agree_with_the_reduced_phase() -> None:
                 angle = 2.0 * np.pi * (cycles - round(cycles))
                 for k, (c, s) in enumerate(zip(ripple.cos, ripple.sin, strict=True), start=1):
                     want += c * math.cos(k * angle) + s * math.sin(k * angle)
-            worst = max(worst, abs(core_level(level).factor(position) - want) / want)
+            worst = max(worst, abs(float(level.factor(position)) - want) / want)
     assert worst <= 1e-14
 
 
 def test_observer_with_a_level_is_the_formula() -> None:
-    params, level = Params(**MAXWELL), screw()
+    params, level = Params(**MAXWELL, sigma2_neg=0.9), screw()
     x = positions()
     plain = simulate_position(params, x, DT)
     v = velocities(x)
-    want = level.factor(x) * (plain - params.sigma2 * v) + params.sigma2 * v
+    sigma2 = np.where(v < 0, 0.9, 0.4)
+    assert (v < 0).sum() > 100
+    want = level.factor(x) * (plain - sigma2 * v) + sigma2 * v
     compensator = Compensator(params, DT, "observer", level=level)
     got = np.array([compensator.step(float(xk)) for xk in x])
     assert np.max(np.abs(got - want)) <= 1e-9 * np.max(np.abs(want))
@@ -205,20 +207,21 @@ def test_feedforward_integrates_from_the_start_position() -> None:
     params, level = Params(**MAXWELL), screw()
     start = -0.0042
     v = 8e-3 * np.cos(0.01 * np.arange(1500))
-    compensator = Compensator(params, DT, "feedforward", level=level)
-    compensator.set_position(start)
+    compensator = Compensator(params, DT, "feedforward", level=level, x=start)
+    assert compensator.position == start
     plain = Compensator(params, DT, "feedforward")
     x = start
     for vk in v.tolist():
         x += vk * DT
         force = plain.step(vk)
-        want = float(level.factor(x)) * (force - params.sigma2 * vk) + params.sigma2 * vk
+        sigma2 = params.sigma2_negative if vk < 0 else params.sigma2
+        want = float(level.factor(x)) * (force - sigma2 * vk) + sigma2 * vk
         assert abs(compensator.step(vk) - want) <= 1e-9 * max(abs(want), 1.0)
     assert compensator.position == x
 
 
 def test_set_position_refusals_change_nothing() -> None:
-    compensator = Compensator(Params(**MAXWELL), DT, level=screw())
+    compensator = Compensator(Params(**MAXWELL), DT, level=screw(), x=0.0)
     compensator.set_position(0.001)
     for bad in (math.nan, math.inf):
         with pytest.raises(InputError, match="`x` must be finite"):

@@ -6,16 +6,16 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
 
 import leuven_rt as lr
 from conftest import LUGRE, MAXWELL
-from leuven_rt import ModelFile, Params, PositionLevel, Ripple
-from leuven_rt.errors import OutputError, ParameterError
+from leuven_rt import ModelFile, Params, PositionForce, PositionLevel, Reconstruction, Ripple
+from leuven_rt.errors import ModelFileError, OutputError, ParameterError
 
 LEVEL = PositionLevel(
     middle=0.0,
@@ -25,13 +25,20 @@ LEVEL = PositionLevel(
 )
 
 
+FORCE = PositionForce(
+    half_stroke=0.01, trend=(0.3, -0.1), ripples=(Ripple(period=0.002, cos=(0.2,), sin=(-0.1,)),)
+)
+
+
 def full_model() -> ModelFile:
     return ModelFile(
         friction=Params(**MAXWELL),
         level=LEVEL,
+        position_force=FORCE,
         offset=0.1,
         inertia=0.37,
         units="rotary",
+        reconstruction=Reconstruction("velocity", cutoff=25.0),
         report={"held_out_rms": 0.021, "stages": [{"name": "sliding", "rms": 0.3}], "warnings": []},
     )
 
@@ -39,8 +46,18 @@ def full_model() -> ModelFile:
 def test_the_json_form_is_the_documented_one() -> None:
     model = full_model()
     mapping = json.loads(model.to_json())
-    assert list(mapping) == ["format", "version", "units", "friction", "level", "measurement", "report"]
-    assert mapping["format"] == "leuven-rt model" and mapping["version"] == 1 and mapping["units"] == "rotary"
+    keys = [
+        "format",
+        "version",
+        "units",
+        "friction",
+        "level",
+        "position_force",
+        "measurement",
+        "reconstruction",
+    ]
+    assert list(mapping) == [*keys, "report"]
+    assert mapping["format"] == "leuven-rt model" and mapping["version"] == 2 and mapping["units"] == "rotary"
     assert mapping["friction"] == Params(**MAXWELL).to_dict()  # exactly the parameter file
     assert mapping["level"] == {
         "middle": 0.0,
@@ -48,9 +65,17 @@ def test_the_json_form_is_the_documented_one() -> None:
         "trend": [0.05, -0.02],
         "ripples": [{"period": 0.004, "cos": [0.03, 0.01], "sin": [0.0, 0.02]}],
     }
+    assert mapping["position_force"] == {
+        "middle": 0.0,
+        "half_stroke": 0.01,
+        "trend": [0.3, -0.1],
+        "ripples": [{"period": 0.002, "cos": [0.2], "sin": [-0.1]}],
+    }
     assert mapping["measurement"] == {"offset": 0.1, "inertia": 0.37}
+    assert mapping["reconstruction"] == {"source": "velocity", "cutoff": 25.0}
     assert mapping["report"]["held_out_rms"] == 0.021
-    assert json.loads(ModelFile(friction=Params(**LUGRE)).to_json())["level"] is None
+    plain = json.loads(ModelFile(friction=Params(**LUGRE)).to_json())
+    assert plain["level"] is None and plain["position_force"] is None and plain["reconstruction"] is None
 
 
 def test_a_model_with_a_level_and_measurement_terms_round_trips_exactly(tmp_path: Path) -> None:
@@ -103,84 +128,77 @@ def test_measurement_force() -> None:
     assert ModelFile(friction=Params(**MAXWELL)).measurement_force(np.ones(3)).tolist() == [0.0] * 3
 
 
-def _file(**changes: Any) -> str:
-    mapping = full_model().to_dict()
-    for key, value in changes.items():
-        if value is None:
-            mapping.pop(key)
-        else:
-            mapping[key] = value
-    return json.dumps(mapping)
-
-
-@pytest.mark.parametrize(
-    ("text", "match"),
-    [
-        (_file(format="leuven-rt params"), r"`format` must be 'leuven-rt model', got 'leuven-rt params'"),
-        (_file(version=2), r"`version` must be 1, got 2: .*newer leuven-rt; upgrade leuven-rt"),
-        (_file(version="1"), r"`version` must be 1, got '1'"),
-        (_file(version=1.0), r"`version` must be 1, got 1\.0"),
-        (_file(version=True), r"`version` must be 1, got True"),
-        (_file(version=None), r"missing key `version`: expected 1"),
-        (_file(comment="hi"), r"unknown keys \['comment'\] in the model file"),
-        (_file(friction=None), r"missing key `friction`"),
-        (_file(friction={"Fc": 1.0}), r"friction: missing parameter keys \['Fs', 'Vs', 'delta', 'n'\]"),
-        (_file(friction=[1.0]), r"`friction` must be an object of parameters"),
-        (_file(units="metric"), r"`units` must be 'linear' or 'rotary', got 'metric'"),
-        (_file(measurement={"offset": "NaN"}), r"`measurement.offset` must be a real number"),
-        (
-            '{"format": "leuven-rt model", "version": 1, "friction": ' + json.dumps(MAXWELL)
-            + ', "measurement": {"offset": NaN}}',
-            r"`measurement.offset` must be finite, got nan",
-        ),
-        (_file(measurement={"inertia": 1e400}), r"`measurement.inertia` must be finite, got inf"),
-        (_file(measurement={"mass": 1.0}), r"unknown keys \['mass'\] in `measurement`"),
-        (_file(level={"middle": 0.0, "slope": 1.0}), r"unknown keys \['slope'\] in `level`"),
-        (_file(level={"half_stroke": 0.0}), r"`level.half_stroke` must be > 0, got 0\.0"),
-        (_file(level={"trend": [0.1]}), r"`level.trend` must hold 2 numbers"),
-        (
-            _file(level={"ripples": [{"period": 1.0, "cos": [0.1, 0.2], "sin": [0.1]}]}),
-            r"`level.ripples\[0\].cos` and `level.ripples\[0\].sin` must have the same length",
-        ),
-        (
-            _file(level={"ripples": [{"period": 1.0, "cos": [0.1]}]}),
-            r"`level.ripples\[0\]` lacks the keys \['sin'\]",
-        ),
-        (
-            _file(level={"ripples": [{"period": -1.0, "cos": [0.1], "sin": [0.0]}]}),
-            r"`level.ripples\[0\].period` must be > 0",
-        ),
-        (_file(report=[1, 2]), r"`report` must be a JSON object or null"),
-        ("[1, 2]", r"a model file must be a JSON object, got list"),
-        ("{", r"a model file must be JSON text of an object"),
-    ],
-)  # fmt: skip
-def test_bad_files_are_refused_naming_the_key(text: str, match: str) -> None:
-    with pytest.raises(ParameterError, match=match):
-        ModelFile.from_json(text)
-
-
 def test_load_names_the_file(tmp_path: Path) -> None:
     path = tmp_path / "model.json"
-    path.write_text(_file(version=3), encoding="utf-8")
-    with pytest.raises(ParameterError, match=rf"^{path}: `version` must be 1, got 3"):
+    text = full_model().to_json().replace('"version": 2', '"version": 3')
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(ModelFileError, match=rf"^{path}: `version` is 3: .*upgrade leuven-rt") as caught:
         ModelFile.load(path)
-    with pytest.raises(ParameterError, match=r"cannot read model file .*missing\.json"):
+    assert (caught.value.kind, caught.value.field) == ("invalid_choice", "version")
+    with pytest.raises(ModelFileError, match=r"cannot read .*missing\.json") as caught:
         ModelFile.load(tmp_path / "missing.json")
+    assert (caught.value.kind, caught.value.field) == ("unreadable_file", None)
     (tmp_path / "latin.json").write_bytes('{"é": 1}'.encode("latin-1"))
-    with pytest.raises(ParameterError, match=r"is not UTF-8 text"):
+    with pytest.raises(ModelFileError, match=r"not UTF-8 text") as caught:
         ModelFile.load(tmp_path / "latin.json")
+    assert caught.value.kind == "unreadable_file"
+    with pytest.raises(ModelFileError, match=r"not a regular file"):
+        ModelFile.load(tmp_path)
+
+
+def test_a_version_1_file_loads_and_is_written_as_version_2() -> None:
+    """Version 1 files (no position_force, no reconstruction) keep loading; saving writes the
+    current version with those keys at their defaults."""
+    mapping = full_model().to_dict()
+    del mapping["position_force"], mapping["reconstruction"]
+    mapping["version"] = 1
+    model = ModelFile.from_dict(mapping)
+    assert model == replace(full_model(), position_force=None, reconstruction=None)
+    written = json.loads(model.to_json())
+    assert written["version"] == 2 and written["position_force"] is None and written["reconstruction"] is None
+
+
+def test_from_dict_refuses_what_json_cannot_hold() -> None:
+    """from_dict reads with the rules of the text: a NaN, a non-text key or a Python object is
+    refused naming the key, as its JSON text would be."""
+    mapping = full_model().to_dict()
+    for path, value, kind, key in [
+        (("measurement", "offset"), math.nan, "out_of_range", "measurement.offset"),
+        (("report", "rms"), math.inf, "out_of_range", "report.rms"),
+        (("report", "when"), object(), "wrong_type", "report.when"),
+        (("friction", "Fc"), 10**400, "out_of_range", "friction.Fc"),
+    ]:
+        changed = json.loads(json.dumps(mapping))
+        changed[path[0]][path[1]] = value
+        with pytest.raises(ModelFileError) as caught:
+            ModelFile.from_dict(changed)
+        assert (caught.value.kind, caught.value.field) == (kind, key), str(caught.value)
+    changed = json.loads(json.dumps(mapping))
+    changed["report"] = {1: 2}
+    with pytest.raises(ModelFileError, match=r"keys must be text") as caught:
+        ModelFile.from_dict(changed)
+    assert (caught.value.kind, caught.value.field) == ("wrong_type", "report")
 
 
 def test_bad_python_values_are_refused() -> None:
+    """The constructor has the file's reader check the whole: a refusal names the key."""
     with pytest.raises(ParameterError, match=r"`friction` must be a leuven_rt.Params or a mapping"):
         ModelFile(friction=3)  # type: ignore[arg-type]
-    with pytest.raises(ParameterError, match=r"`measurement.offset` must be a real number, got 'a'"):
-        ModelFile(friction=Params(**MAXWELL), offset="a")  # type: ignore[arg-type]
-    with pytest.raises(ParameterError, match=r"`measurement.inertia` must be finite, got nan"):
-        ModelFile(friction=Params(**MAXWELL), inertia=math.nan)
-    with pytest.raises(ParameterError, match=r"`units` must be 'linear' or 'rotary', got 'deg'"):
-        ModelFile(friction=Params(**MAXWELL), units="deg")  # type: ignore[arg-type]
+    for changes, kind, key in [
+        ({"offset": "a"}, "wrong_type", "measurement.offset"),
+        ({"inertia": math.nan}, "out_of_range", "measurement.inertia"),
+        ({"units": "deg"}, "wrong_type", "units"),
+        ({"level": {"half_stroke": 0.0}}, "not_positive", "level.half_stroke"),
+        ({"level": {"slope": 1.0}}, "unknown_key", "level.slope"),
+        ({"reconstruction": Reconstruction("position", cutoff=-1.0)}, "not_positive",
+         "reconstruction.cutoff"),
+        ({"position_force": {"ripples": [{"period": 0.0, "cos": [1.0], "sin": [0.0]}]}}, "ripple_period",
+         "position_force.ripples[0].period"),
+        ({"friction": {**MAXWELL, "Fs": 0.1}}, "static_below_coulomb", "friction.Fs"),
+    ]:  # fmt: skip
+        with pytest.raises(ModelFileError) as caught:
+            ModelFile(**{"friction": Params(**MAXWELL), **changes})
+        assert (caught.value.kind, caught.value.field) == (kind, key), str(caught.value)
     with pytest.raises(ParameterError, match=r"`report.when` must hold JSON values only, got object"):
         ModelFile(friction=Params(**MAXWELL), report={"when": object()})
     with pytest.raises(ParameterError, match=r"`report` must be a JSON object or None"):
@@ -205,4 +223,7 @@ def test_save_follows_the_output_policy(tmp_path: Path) -> None:
 
 def test_the_public_names() -> None:
     assert lr.ModelFile is ModelFile and lr.PositionLevel is PositionLevel and lr.Ripple is Ripple
-    assert {"ModelFile", "PositionLevel", "Ripple", "predict", "Prediction"} <= set(lr.__all__)
+    assert lr.Reconstruction is Reconstruction and lr.PositionForce is PositionForce
+    assert {"ModelFile", "PositionLevel", "Ripple", "Reconstruction", "predict", "Prediction"} <= set(
+        lr.__all__
+    )

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import leuven_rt as lr
-from leuven_rt import Compensator, ModelFile, Params, PositionLevel, Ripple
+from leuven_rt import Compensator, ModelFile, Params, PositionForce, PositionLevel, Ripple
 from leuven_rt.data.signals import default_cutoff, estimate_derivatives
 from leuven_rt.data.synthetic import SyntheticData, make_data
 from leuven_rt.errors import DataError, OutputError, ResamplingWarning
@@ -91,6 +91,20 @@ def test_the_level_scales_the_contact_part_and_the_measurement_terms_add(synthet
         prediction.f_model - prediction.friction, 0.3 + 0.05 * a, rtol=1e-12, atol=1e-12
     )
     assert not np.allclose(prediction.friction, plain.friction)
+
+
+def test_the_model_file_s_position_force_is_added(synthetic: SyntheticData) -> None:
+    """A model file's position force is part of the friction a compensator adds: predict adds
+    r(x) to the friction, as a compensator in observer mode with the same terms does."""
+    force = PositionForce(half_stroke=0.01, trend=(0.2, -0.1), ripples=(Ripple(0.003, (0.05,), (-0.02,)),))
+    plain = predict(synthetic.params, synthetic.data)
+    prediction = predict(ModelFile(friction=synthetic.params, position_force=force), synthetic.data)
+    np.testing.assert_allclose(
+        prediction.friction, plain.friction + force.force(plain.x), rtol=0.0, atol=1e-12
+    )
+    compensator = Compensator(synthetic.params, synthetic.data.dt, mode="observer", position_force=force)
+    forces = np.array([compensator.step(float(x)) for x in prediction.x])
+    np.testing.assert_allclose(forces, prediction.friction, rtol=0.0, atol=1e-9)
 
 
 def test_a_log_with_the_hidden_terms_is_explained_by_the_full_model(synthetic: SyntheticData) -> None:

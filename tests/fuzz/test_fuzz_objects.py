@@ -204,22 +204,42 @@ class MassMachine(_Machine):
 
 
 class CompensatorMachine(_Machine):
-    @initialize(mode=st.sampled_from(["feedforward", "observer"]))
-    def build(self, mode: Any) -> None:
+    @initialize(mode=st.sampled_from(["feedforward", "observer"]), terms=st.booleans())
+    def build(self, mode: Any, terms: bool) -> None:
         self.delta = np.array(MAXWELL["Delta"])
-        self.compensator = lr.Compensator(MAXWELL, DT, mode)
+        if terms:
+            # A level, a cogging force and a viscous coefficient of its own for v < 0.
+            ripple = lr.Ripple(0.004, (0.05, 0.02), (0.0, 0.03))
+            level = lr.PositionLevel(0.0, 0.01, (0.05, -0.02), (ripple,))
+            force = lr.PositionForce(0.0, 0.01, (0.5, 0.1), (ripple,))
+            params = dict(MAXWELL, sigma2_neg=0.9)
+            self.compensator = lr.Compensator(params, DT, mode, level, force, x=0.001)
+        else:
+            self.compensator = lr.Compensator(MAXWELL, DT, mode)
 
     def snapshot(self) -> tuple[Any, ...]:
         z, zeta, last = self.compensator._state()
-        return (z, np.array(zeta), np.nan if last is None else last, self.compensator.output)
+        position = self.compensator.position
+        return (z, np.array(zeta), np.nan if last is None else last, self.compensator.output,
+                np.nan if position is None else position)  # fmt: skip
 
     @rule(value=scalar)
     def step(self, value: Any) -> None:
         force = self.attempt(lambda: self.compensator.step(value))
         assert force is REFUSED or np.isfinite(force)
 
+    @rule(v=scalar, x=scalar)
+    def step_trajectory(self, v: Any, x: Any) -> None:
+        force = self.attempt(lambda: self.compensator.step_trajectory(v, x))
+        assert force is REFUSED or np.isfinite(force)
+
+    @rule(x=scalar)
+    def set_position(self, x: Any) -> None:
+        self.attempt(lambda: self.compensator.set_position(x))
+
     @rule(change=st.sampled_from([{}, {"Fc": 0.9}, {"W": [0.6] * 4}, {"Fs": 0.1}, {"W": [1.0] * 3},
-                                  {"sigma0": 1e5, "W": None, "Delta": None}, {"Vs": "x"}]))  # fmt: skip
+                                  {"sigma0": 1e5, "W": None, "Delta": None}, {"Vs": "x"}, {"sigma2_neg": 0.0},
+                                  {"sigma2_neg": -1.0}, {"sigma2_neg": "x"}]))  # fmt: skip
     def set_params(self, change: dict[str, Any]) -> None:
         given = {key: value for key, value in {**MAXWELL, **change}.items() if value is not None}
         self.attempt(lambda: self.compensator.set_params(given))

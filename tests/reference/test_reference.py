@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from leuven_rt import DivergenceError, InputError, Params, reference
+from leuven_rt import DivergenceError, InputError, Params, PositionForce, PositionLevel, Ripple, reference
 
 EPS = np.finfo(np.float64).eps
 
@@ -96,6 +96,35 @@ def test_steady_levels_differ_by_direction() -> None:
     backward = reference.simulate(MAXWELL, np.full(3000, -v), dt)[-1]
     assert forward == pytest.approx(1.0 + 0.5 / math.e + 0.4 * v, rel=1e-12)
     assert backward == pytest.approx(-(0.7 + 0.5 / math.e) - 0.4 * v, rel=1e-12)
+    # With a viscous coefficient of its own for v < 0, only the backward level changes.
+    asymmetric = dict(MAXWELL, sigma2_neg=2.5)
+    assert reference.simulate(asymmetric, np.full(3000, v), dt)[-1] == forward
+    backward = reference.simulate(asymmetric, np.full(3000, -v), dt)[-1]
+    assert backward == pytest.approx(-(0.7 + 0.5 / math.e) - 2.5 * v, rel=1e-12)
+
+
+def test_the_position_terms_are_written_out() -> None:
+    """The oracle's r(x), factor and position force, in numbers: at the middle of the stroke
+    p = 0, P2 = −0.5; at a quarter period the ripple's cos is 0 and its sin 1."""
+    level = PositionLevel(0.0, 0.01, (0.1, 0.04), (Ripple(0.004, (0.03,), (0.02,)),))
+    force = PositionForce(0.0, 0.01, (2.0, 0.4), (Ripple(0.004, (0.3,), (0.2,)),))
+    assert reference.position_series(level, 0.0) == pytest.approx(-0.02 + 0.03, abs=1e-15)
+    assert reference.position_series(level, 0.001) == pytest.approx(
+        0.1 * 0.1 + 0.04 * (1.5 * 0.01 - 0.5) + 0.02, abs=1e-15
+    )
+    assert reference.position_series(force, 0.02) == pytest.approx(2.0 + 0.4 + 0.3, abs=1e-14)
+    # A run: the level scales the contact part, sigma2(v)·v stays, the force is added.
+    x = 0.003 * np.sin(np.linspace(0.0, 9.0, 900))
+    params = dict(MAXWELL, sigma2_neg=1.1)
+    plain = reference.simulate_position(params, x, 1e-3)
+    v = np.diff(x, prepend=x[0]) / 1e-3
+    viscous = np.where(v < 0, 1.1, 0.4) * v
+    want = (1.0 + reference.position_series(level, x)) * (plain - viscous) + viscous
+    want = want + reference.position_series(force, x)
+    got = reference.simulate_position(params, x, 1e-3, level=level, position_force=force)
+    assert np.max(np.abs(got - want)) <= 1e-14
+    with pytest.raises(InputError, match="`x` places a `level` or a `position_force`"):
+        reference.simulate(params, v, 1e-3, x=x)
 
 
 # --- the state: elements stay within their break deflection ---------------------------------

@@ -93,7 +93,7 @@ def test_predict_refusals_are_one_line(files: dict[str, Path], tmp_path: Path,
                                        capsys: pytest.CaptureFixture[str]) -> None:  # fmt: skip
     newer = tmp_path / "newer.json"
     newer.write_text(
-        json.dumps({**ModelFile(friction=Params(**MAXWELL)).to_dict(), "version": 2}), encoding="utf-8"
+        json.dumps({**ModelFile(friction=Params(**MAXWELL)).to_dict(), "version": 3}), encoding="utf-8"
     )
     out = str(tmp_path / "p.csv")
     model, log, renamed = str(files["model"]), str(files["log"]), str(files["renamed"])

@@ -1,4 +1,5 @@
-//! L channels stepped together through their rows of samples: gms-core's `advance` per lane.
+//! L channels stepped together through their rows of samples: gms-core's `advance` per lane,
+//! then gms-core's position terms on the forces.
 
 use gms_core::{Params, Scheme, State};
 
@@ -61,21 +62,25 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         signal,
     } = group;
     debug_assert!(states.len() == L && input.len() == L * samples && out.len() == input.len());
+    // The positions of velocity input, and the terms on the output (none when both are none:
+    // then the forces are the plain ones, bit for bit).
+    let (positions, terms) = match signal {
+        Signal::Velocity => (None, None),
+        Signal::VelocityAt { x, level, force } => (Some(x), Some((level, force))),
+        Signal::Position { level, force } => (None, Some((level, force))),
+    };
+    let terms = terms.filter(|(level, force)| !(level.is_flat() && force.is_none()));
     // gms-core scans a row for finiteness before it steps it; a row that fails is gms-core's to
     // report.
-    if !input.iter().all(|x| x.is_finite()) {
+    if !input
+        .iter()
+        .chain(positions.unwrap_or(&[]))
+        .all(|x| x.is_finite())
+    {
         return Err(Rejected);
     }
-    let (curve, sigma1, sigma2) = (
-        Curve::new(params.stribeck()),
-        params.sigma1(),
-        params.sigma2(),
-    );
-    let level = match signal {
-        Signal::Position(level) if !level.is_flat() => Some(level),
-        _ => None,
-    };
-    let position = matches!(signal, Signal::Position(_));
+    let (curve, sigma1) = (Curve::new(params.stribeck()), params.sigma1());
+    let position = matches!(signal, Signal::Position { .. });
     let mut memory = kernel.gather::<L>(states);
     let mut z: [f64; L] = lanes(|l| states[l].z);
     let mut last: [f64; L] = lanes(|l| states[l].last_position.unwrap_or(0.0));
@@ -98,6 +103,8 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         Scheme::Explicit => kernel.force::<L>(&memory, &z),
     };
     let mut x = [[0.0; L]; BLOCK];
+    // The positions of velocity input (position input has them in `x`).
+    let mut at = [[0.0; L]; BLOCK];
     let mut v = [[0.0; L]; BLOCK];
     let mut g = [[0.0; L]; BLOCK];
     let mut forces = [[0.0; L]; BLOCK];
@@ -107,6 +114,12 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
             let row = &input[l * samples + start..l * samples + start + len];
             for (x, &sample) in x.iter_mut().zip(row) {
                 x[l] = sample;
+            }
+            if let Some(positions) = positions {
+                let row = &positions[l * samples + start..l * samples + start + len];
+                for (at, &sample) in at.iter_mut().zip(row) {
+                    at[l] = sample;
+                }
             }
         }
         for t in 0..len {
@@ -175,18 +188,23 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
                     hysteresis
                 }
             };
-            let force: [f64; L] =
-                lanes(|l| hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + sigma2 * v[l]);
+            let force: [f64; L] = lanes(|l| {
+                hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + params.sigma2_at(v[l]) * v[l]
+            });
             if !all_finite(&force) {
                 return Err(Rejected);
             }
             forces[t] = force;
             z = z_next;
         }
-        if let Some(level) = level {
+        if let Some((level, force)) = terms {
+            // gms-core's `at_position`, in its order.
+            let x = if position { &x } else { &at };
             for t in 0..len {
                 for l in 0..L {
-                    forces[t][l] = level.apply(forces[t][l], x[t][l], v[t][l], sigma2);
+                    let (x, v) = (x[t][l], v[t][l]);
+                    let leveled = level.apply(forces[t][l], x, v, params.sigma2_at(v));
+                    forces[t][l] = force.apply(leveled, x);
                 }
                 if !all_finite(&forces[t]) {
                     return Err(Rejected);
@@ -212,4 +230,64 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use gms_core::{Level, MaxwellSlip, Params, PositionForce, RippleTerms, Scheme, Stribeck};
+
+    use super::{run, Group};
+    use crate::{BatchHysteresis, Signal, LANES};
+
+    /// Groups with the position terms run in the lanes, not handed back to gms-core (which
+    /// would also agree, and so hide a kernel that rejects them): velocity, velocity with
+    /// positions, and position input, with an asymmetric viscous coefficient.
+    #[test]
+    fn the_lanes_run_the_position_terms() {
+        let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
+        let bank = MaxwellSlip::new([0.8, 0.8], [1e-6, 3e-6]).unwrap();
+        let params = Params::new(stribeck, 2.0, 30.0, 0.4, bank)
+            .and_then(|params| params.with_sigma2_neg(0.9))
+            .unwrap();
+        let ripple = RippleTerms {
+            period: 2e-3,
+            cos: &[0.1],
+            sin: &[0.05],
+        };
+        let level = Level::new(0.0, 1e-2, [0.1, 0.0], &[ripple]).unwrap();
+        let force = PositionForce::new(0.0, 1e-2, [0.5, 0.1], &[ripple]).unwrap();
+        let samples = 100;
+        let input: Vec<f64> = (0..LANES * samples)
+            .map(|k| 1e-2 * (0.05 * k as f64).sin())
+            .collect();
+        let x: Vec<f64> = input.iter().map(|v| v * 0.3).collect();
+        let kernel = params.hysteresis().kernel();
+        for signal in [
+            Signal::Velocity,
+            Signal::VelocityAt {
+                x: &x,
+                level: &level,
+                force: &force,
+            },
+            Signal::Position {
+                level: &level,
+                force: &force,
+            },
+        ] {
+            let mut states = [params.relaxed_state(); LANES];
+            let mut out = vec![0.0; input.len()];
+            let group = Group {
+                params: &params,
+                kernel: &kernel,
+                states: &mut states,
+                input: &input,
+                out: &mut out,
+                samples,
+                dt: 1e-3,
+                scheme: Scheme::Implicit,
+                signal,
+            };
+            assert!(run::<_, LANES>(group).is_ok(), "{signal:?}");
+        }
+    }
 }

@@ -30,7 +30,7 @@ mod lanes;
 mod math;
 mod solver;
 
-use gms_core::{Error, Level, Params, Scheme, State};
+use gms_core::{Error, Level, Params, PositionForce, Scheme, State};
 
 pub use dispatch::Path;
 pub use lanes::{BatchHysteresis, LaneKernel, LinearKernel, MaxwellKernel, TrialLanes};
@@ -39,15 +39,49 @@ pub use lanes::{BatchHysteresis, LaneKernel, LinearKernel, MaxwellKernel, TrialL
 /// than four gives the processor independent work to overlap (measured: 5–15 % faster).
 pub const LANES: usize = 8;
 
-/// What the rows of a batch are.
+/// What the rows of a batch are, and the position-dependent terms on their output
+/// (docs/model.md#position-dependent-level).
 #[derive(Clone, Copy, Debug)]
 pub enum Signal<'a> {
     /// Velocities v \[m/s\]: [`Params::simulate`].
     Velocity,
-    /// Positions x \[m\] with a level ([`Level::none`] for none):
-    /// [`Params::simulate_position`], or [`Params::simulate_position_level`] when the level
-    /// is not flat.
-    Position(&'a Level),
+    /// Velocities v \[m/s\] with the position of every sample, `x` (the input's shape), which
+    /// places a level and a position force: [`Params::simulate_level`].
+    VelocityAt {
+        /// The positions \[m\], channels × samples like the input.
+        x: &'a [f64],
+        /// The level ([`Level::none`] for none).
+        level: &'a Level,
+        /// The position force ([`PositionForce::none`] for none).
+        force: &'a PositionForce,
+    },
+    /// Positions x \[m\] with a level and a position force: [`Params::simulate_position`], or
+    /// [`Params::simulate_position_level`] when either is given.
+    Position {
+        /// The level ([`Level::none`] for none).
+        level: &'a Level,
+        /// The position force ([`PositionForce::none`] for none).
+        force: &'a PositionForce,
+    },
+}
+
+impl Signal<'_> {
+    /// The signal of the channels whose samples are `rows` of the input (the positions of
+    /// [`Signal::VelocityAt`] cut like the input), for running them apart.
+    ///
+    /// # Panics
+    /// If `rows` is beyond the positions.
+    #[must_use]
+    pub fn rows(self, rows: core::ops::Range<usize>) -> Self {
+        match self {
+            Signal::VelocityAt { x, level, force } => Signal::VelocityAt {
+                x: &x[rows],
+                level,
+                force,
+            },
+            other => other,
+        }
+    }
 }
 
 /// Runs every channel over its row of `input` (`states.len()` rows of `samples`, row-major),
@@ -59,7 +93,8 @@ pub enum Signal<'a> {
 /// index) and gms-core's error for it.
 ///
 /// # Panics
-/// If `input` or `out` is not `states.len() × samples` long.
+/// If `input`, `out` or the positions of [`Signal::VelocityAt`] are not `states.len() × samples`
+/// long.
 #[allow(clippy::too_many_arguments)] // gms-core's block call, plus the shape
 pub fn run<H: BatchHysteresis>(
     params: &Params<H>,
@@ -88,7 +123,8 @@ pub fn run<H: BatchHysteresis>(
 /// baseline).
 ///
 /// # Panics
-/// If `input` or `out` is not `states.len() × samples` long.
+/// If `input`, `out` or the positions of [`Signal::VelocityAt`] are not `states.len() × samples`
+/// long.
 #[allow(clippy::too_many_arguments)]
 pub fn run_on<H: BatchHysteresis>(
     path: Path,
@@ -105,6 +141,12 @@ pub fn run_on<H: BatchHysteresis>(
         input.len() == states.len() * samples && out.len() == input.len(),
         "input and output must be channels × samples"
     );
+    if let Signal::VelocityAt { x, .. } = signal {
+        assert!(
+            x.len() == input.len(),
+            "positions must be channels × samples"
+        );
+    }
     // No channels: `samples` is then not tied to the input's length (0 × anything), and
     // LANES × samples could overflow; gms-core's calls still check dt.
     if states.is_empty() || samples == 0 || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
@@ -119,6 +161,7 @@ pub fn run_on<H: BatchHysteresis>(
         .zip(input.chunks(block).zip(out.chunks_mut(block)));
     for (index, (states, (input, out))) in groups.enumerate() {
         let offset = index * LANES;
+        let signal = signal.rows(offset * samples..offset * samples + input.len());
         let vectorized = states.len() == LANES
             && dispatch::run_group::<H, LANES>(
                 path,
@@ -171,13 +214,16 @@ fn run_scalar<H: BatchHysteresis>(
         .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
         .enumerate()
         .find_map(|(channel, (state, (input, out)))| {
-            let result = match signal {
+            let result = match signal.rows(channel * samples..(channel + 1) * samples) {
                 Signal::Velocity => params.simulate(state, input, dt, scheme, out),
-                Signal::Position(level) if level.is_flat() => {
+                Signal::VelocityAt { x, level, force } => {
+                    params.simulate_level(state, input, x, dt, scheme, level, force, out)
+                }
+                Signal::Position { level, force } if level.is_flat() && force.is_none() => {
                     params.simulate_position(state, input, dt, scheme, out)
                 }
-                Signal::Position(level) => {
-                    params.simulate_position_level(state, input, dt, scheme, level, out)
+                Signal::Position { level, force } => {
+                    params.simulate_position_level(state, input, dt, scheme, level, force, out)
                 }
             };
             result.err().map(|error| (channel, error))

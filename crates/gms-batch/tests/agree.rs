@@ -3,8 +3,8 @@
 
 use gms_batch::{run_on, BatchHysteresis, Path, Signal, LANES};
 use gms_core::{
-    Error, Level, Linear, MaxwellSlip, Params, RippleTerms, Scheme, State, Stribeck,
-    MIN_DELTA_RATIO,
+    Error, Hysteresis, Level, Linear, MaxwellSlip, Params, PositionForce, RippleTerms, Scheme,
+    State, Stribeck, MIN_DELTA_RATIO,
 };
 use proptest::prelude::*;
 
@@ -46,10 +46,14 @@ fn scalar<H: BatchHysteresis>(
         .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
         .enumerate()
         .find_map(|(channel, (state, (input, out)))| {
+            let rows = channel * samples..(channel + 1) * samples;
             let result = match signal {
                 Signal::Velocity => params.simulate(state, input, dt, scheme, out),
-                Signal::Position(level) => {
-                    params.simulate_position_level(state, input, dt, scheme, level, out)
+                Signal::VelocityAt { x, level, force } => {
+                    params.simulate_level(state, input, &x[rows], dt, scheme, level, force, out)
+                }
+                Signal::Position { level, force } => {
+                    params.simulate_position_level(state, input, dt, scheme, level, force, out)
                 }
             };
             result.err().map(|error| (channel, error))
@@ -145,9 +149,24 @@ struct Curve {
     n: f64,
     sigma1: f64,
     sigma2: f64,
+    sigma2_neg: Option<f64>,
 }
 
 impl Curve {
+    fn params<H: Hysteresis>(&self, hysteresis: H) -> Params<H> {
+        let params = Params::new(
+            self.stribeck(),
+            self.n,
+            self.sigma1,
+            self.sigma2,
+            hysteresis,
+        )
+        .unwrap();
+        match self.sigma2_neg {
+            Some(sigma2_neg) => params.with_sigma2_neg(sigma2_neg).unwrap(),
+            None => params,
+        }
+    }
     fn stribeck(&self) -> Stribeck {
         Stribeck::asymmetric(
             self.fc,
@@ -179,10 +198,15 @@ fn curve() -> impl Strategy<Value = Curve> {
             prop::sample::select(vec![1.0, 2.0, 0.7, 1.5]),
         ),
         prop::sample::select(vec![1.0, 2.0, 1.5, 3.0, 0.8]),
-        (0.0..100.0f64, 0.0..2.0f64),
+        (0.0..100.0f64, 0.0..2.0f64, prop::option::of(0.0..2.0f64)),
     )
         .prop_map(
-            |((fc, ratio, asymmetric, scale, ratio_neg), (vs, delta), n, (sigma1, sigma2))| {
+            |(
+                (fc, ratio, asymmetric, scale, ratio_neg),
+                (vs, delta),
+                n,
+                (sigma1, sigma2, sigma2_neg),
+            )| {
                 let (fc_neg, fs_neg) = if asymmetric {
                     (fc * scale, fc * scale * ratio_neg)
                 } else {
@@ -198,6 +222,7 @@ fn curve() -> impl Strategy<Value = Curve> {
                     n,
                     sigma1,
                     sigma2,
+                    sigma2_neg,
                 }
             },
         )
@@ -307,6 +332,23 @@ fn maxwell_case<const N: usize>() -> impl Strategy<Value = (Curve, MaxwellSlip<N
     })
 }
 
+/// A level and a position force, each with a trend and a ripple.
+fn terms() -> (Level, PositionForce) {
+    let ripple = RippleTerms {
+        period: 1e-3,
+        cos: &[0.1, 0.02],
+        sin: &[0.05, 0.0],
+    };
+    let level = Level::new(0.0, 1e-2, [0.1, -0.05], &[ripple]).unwrap();
+    let cogging = RippleTerms {
+        period: 7e-4,
+        cos: &[0.4],
+        sin: &[-0.3],
+    };
+    let force = PositionForce::new(1e-3, 5e-3, [0.7, 0.2], &[cogging]).unwrap();
+    (level, force)
+}
+
 macro_rules! maxwell_tests {
     ($($name:ident: $n:expr, $cases:expr;)*) => {$(
         proptest! {
@@ -319,17 +361,19 @@ macro_rules! maxwell_tests {
                         ((Just(curve), Just(bank)), velocities(vs), scheme(), dt(), -1e-3..1e-3f64)
                     })
             ) {
-                let params = Params::new(curve.stribeck(), curve.n, curve.sigma1, curve.sigma2, bank)
-                    .unwrap();
+                let params = curve.params(bank);
                 let states = warmed(&params, channels, &v[..samples], dt);
                 let memory = |m: &[f64; $n]| m.to_vec();
                 compare(&params, &states, &v, samples, dt, scheme, Signal::Velocity, memory)?;
                 let x = positions(&v, samples, dt, start);
-                let flat = Level::none();
-                compare(&params, &states, &x, samples, dt, scheme, Signal::Position(&flat), memory)?;
-                let ripple = RippleTerms { period: 1e-3, cos: &[0.1, 0.02], sin: &[0.05, 0.0] };
-                let level = Level::new(0.0, 1e-2, [0.1, -0.05], &[ripple]).unwrap();
-                compare(&params, &states, &x, samples, dt, scheme, Signal::Position(&level), memory)?;
+                let (level, force) = terms();
+                let none = (Level::none(), PositionForce::none());
+                for (level, force) in [(&none.0, &none.1), (&level, &none.1), (&none.0, &force), (&level, &force)] {
+                    let signal = Signal::Position { level, force };
+                    compare(&params, &states, &x, samples, dt, scheme, signal, memory)?;
+                    let signal = Signal::VelocityAt { x: &x, level, force };
+                    compare(&params, &states, &v, samples, dt, scheme, signal, memory)?;
+                }
             }
         }
     )*};
@@ -351,13 +395,17 @@ proptest! {
             (Just(curve), (2.0..8.0f64).prop_map(|e| 10f64.powf(e)), velocities(vs), scheme(), dt())
         })
     ) {
-        let params = Params::new(curve.stribeck(), curve.n, curve.sigma1, curve.sigma2,
-            Linear::new(sigma0).unwrap()).unwrap();
+        let params = curve.params(Linear::new(sigma0).unwrap());
         let states = warmed(&params, channels, &v[..samples], dt);
         compare(&params, &states, &v, samples, dt, scheme, Signal::Velocity, |()| Vec::new())?;
         let x = positions(&v, samples, dt, 0.0);
-        compare(&params, &states, &x, samples, dt, scheme, Signal::Position(&Level::none()),
-            |()| Vec::new())?;
+        let (level, force) = terms();
+        compare(&params, &states, &x, samples, dt, scheme,
+            Signal::Position { level: &Level::none(), force: &PositionForce::none() }, |()| Vec::new())?;
+        compare(&params, &states, &x, samples, dt, scheme,
+            Signal::Position { level: &level, force: &force }, |()| Vec::new())?;
+        compare(&params, &states, &v, samples, dt, scheme,
+            Signal::VelocityAt { x: &x, level: &level, force: &force }, |()| Vec::new())?;
     }
 
     /// A non-finite sample anywhere: the same channel, sample and error as gms-core, on a
@@ -368,7 +416,7 @@ proptest! {
         samples in 1usize..=40,
         bad in (0usize..11, 0usize..40, prop::sample::select(vec![f64::NAN, f64::INFINITY])),
         second in prop::option::of((0usize..11, 0usize..40)),
-        position in prop::bool::ANY,
+        signal in 0usize..3,
     ) {
         let params = standard::<4>();
         let mut v: Vec<f64> = (0..channels * samples).map(|k| 1e-3 * (k as f64 * 0.37).sin()).collect();
@@ -378,9 +426,21 @@ proptest! {
             v[(channel % channels) * samples + sample % samples] = f64::NAN;
         }
         let states = vec![params.relaxed_state(); channels];
-        let level = Level::none();
-        let signal = if position { Signal::Position(&level) } else { Signal::Velocity };
+        let (level, force) = terms();
+        // Finite positions beside the bad velocities, and the bad samples as positions.
+        let x: Vec<f64> = (0..v.len()).map(|k| 1e-4 * k as f64).collect();
+        let signal = match signal {
+            0 => Signal::Velocity,
+            1 => Signal::Position { level: &level, force: &force },
+            _ => Signal::VelocityAt { x: &x, level: &level, force: &force },
+        };
         compare(&params, &states, &v, samples, 1e-3, Scheme::Implicit, signal, |m: &[f64; 4]| m.to_vec())?;
+        if let Signal::VelocityAt { .. } = signal {
+            // The bad samples in the positions instead: refused naming `x`.
+            let finite: Vec<f64> = v.iter().map(|v| if v.is_finite() { *v } else { 1e-3 }).collect();
+            let signal = Signal::VelocityAt { x: &v, level: &level, force: &force };
+            compare(&params, &states, &finite, samples, 1e-3, Scheme::Implicit, signal, |m: &[f64; 4]| m.to_vec())?;
+        }
     }
 }
 
@@ -490,7 +550,10 @@ fn bad_dt_and_empty_rows_are_gms_core_errors() {
         0,
         1e-3,
         Scheme::Implicit,
-        Signal::Position(&Level::none()),
+        Signal::Position {
+            level: &Level::none(),
+            force: &PositionForce::none(),
+        },
         &mut [],
     );
     assert_eq!(error, None);

@@ -14,25 +14,30 @@
 //!   internal deflection z tracks the real junctions. Any position signal works, so a desired
 //!   position gives position-based feedforward.
 //!
-//! **Position-dependent level.** [`Compensator::with_level`] gives the compensator a
-//! [`Level`] (docs/model.md#position-dependent-level): the output becomes
-//! factor(x)·(F − σ2·v) + σ2·v, with F the plain model's force and v the step's velocity. In
-//! observer mode x is the input. In feedforward mode the compensator integrates the desired
-//! velocity, x ← x + v·dt, from the position given to [`Compensator::set_position`] (0 until
-//! then): with a level, a feedforward compensator needs the axis's start position, or its
-//! ripples and trend are out of phase with the machine. The level scales the output only; the
-//! model state evolves as without it, and [`Level::none`] (the default) gives the plain output
-//! bit for bit.
+//! **Position-dependent terms.** [`Compensator::with_level`] gives the compensator a
+//! [`Level`] and [`Compensator::with_position_force`] a [`PositionForce`]
+//! (docs/model.md#position-dependent-level): the output becomes
+//! factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x), with F the plain model's force and v the step's
+//! velocity. In observer mode x is the input. In feedforward mode the compensator needs the
+//! axis's position: [`Compensator::step_trajectory`] takes it with the desired velocity each
+//! sample (a trajectory generator gives both); [`Compensator::step`] integrates the desired
+//! velocity, x ← x + v·dt, from the start position ([`Compensator::with_start_position`] or
+//! [`Compensator::set_position`]). Without a start position the terms would be evaluated from
+//! x = 0, out of phase with the machine, so a feedforward compensator refuses a level or a
+//! position force until it has one ([`Error::Missing`] naming `x`). The terms act on the output
+//! only; the model state evolves as without them, and [`Level::none`] and
+//! [`PositionForce::none`] (the defaults) give the plain output bit for bit.
 //!
 //! **Bounded work.** A step is one implicit model step: at most 2N + 1 evaluations of the
 //! hysteresis trial, each O(N) (see the solver), plus for n ∉ {1, 2} at most
 //! [`MAX_ITERATIONS`](crate::MAX_ITERATIONS) safeguarded Newton iterations on each of those
-//! pieces; with a level, one sincos per ripple and at most
-//! [`MAX_HARMONICS`](crate::MAX_HARMONICS) rotations per ripple. [`Compensator::set_params`] costs at most 2N + 1 trial evaluations and two commits.
+//! pieces; with a level or a position force, one sincos per ripple of each and at most
+//! [`MAX_HARMONICS`](crate::MAX_HARMONICS) rotations per ripple. [`Compensator::set_params`]
+//! costs at most 2N + 1 trial evaluations and two commits.
 //! Nothing allocates and nothing panics.
 //!
 //! **Parameter swap without a jump.** The hysteresis force Fh carries the model's memory; σ1·ż
-//! and σ2·v are memoryless. New parameters, applied to the old state (z, ζ) as they are, would
+//! and σ2(v)·v are memoryless. New parameters, applied to the old state (z, ζ) as they are, would
 //! generally give a different Fh at the same z: a jump of up to the whole friction level when,
 //! say, the Δᵢ change. So [`Compensator::set_params`] re-initialises the state for the new
 //! parameters: the elements are first made consistent with the new Δᵢ at the current z (those
@@ -41,15 +46,15 @@
 //! next sample then starts from the force the loop has just applied, and the transition to the
 //! new model's behaviour follows the model's own dynamics: the change over that sample is O(dt)
 //! like any other's (tests/compensator.rs checks that it shrinks with dt, while the naive swap
-//! jumps by a fixed amount). What changes at once is the part without memory: σ2·v by Δσ2·v,
+//! jumps by a fixed amount). What changes at once is the part without memory: σ2(v)·v by Δσ2·v,
 //! and σ1·ż because ż = v·(1 − |Fh/g(v)|ⁿ·sgn(Fh)/sgn(v)) now uses the new g(v), by at most
 //! σ1·|v|·|1 − |Fh/`g_new`(v)|ⁿ|. Both are zero at rest and are the new model's answer to the same
 //! motion, not an artefact of the swap.
 
-use crate::checks::positive;
+use crate::checks::{finite, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::Hysteresis;
-use crate::level::Level;
+use crate::level::{Level, PositionForce};
 use crate::model::{position_velocity, Params, Scheme, State};
 
 /// What the compensator's input is.
@@ -87,12 +92,18 @@ pub struct Compensator<H: Hysteresis> {
     mode: Mode,
     output: f64,
     level: Level,
-    /// The feedforward position: the desired velocity integrated from [`Compensator::set_position`].
-    position: f64,
+    position_force: PositionForce,
+    /// The feedforward position: the start position, then the desired positions stepped or the
+    /// desired velocities integrated since; `None` until a start position is given.
+    position: Option<f64>,
 }
 
 impl<H: Hysteresis> Compensator<H> {
-    /// A compensator at rest (relaxed state, output 0) with sample time `dt` (finite, > 0).
+    /// A compensator at rest (relaxed state, output 0) with sample time `dt` (finite, > 0), no
+    /// level, no position force and, in feedforward mode, no start position yet.
+    ///
+    /// # Errors
+    /// [`Error::NotPositive`] naming `dt`.
     pub fn new(params: Params<H>, dt: f64, mode: Mode) -> Result<Self, Error> {
         let dt = positive(dt, Field::dt)?;
         Ok(Self {
@@ -102,30 +113,83 @@ impl<H: Hysteresis> Compensator<H> {
             mode,
             output: 0.0,
             level: Level::none(),
-            position: 0.0,
+            position_force: PositionForce::none(),
+            position: None,
         })
+    }
+
+    /// This compensator with the axis's start position `x` (finite): where feedforward mode
+    /// starts placing the level and the position force. Give it before them.
+    ///
+    /// # Errors
+    /// [`Error::NotFiniteValue`] naming `x`.
+    pub fn with_start_position(mut self, x: f64) -> Result<Self, Error> {
+        self.set_position(x)?;
+        Ok(self)
     }
 
     /// This compensator with a position-dependent level (see the module documentation); the
     /// level was validated when it was built.
-    #[must_use]
-    pub fn with_level(self, level: Level) -> Self {
-        Self { level, ..self }
+    ///
+    /// # Errors
+    /// [`Error::Missing`] naming `x`: a feedforward compensator without a start position
+    /// ([`Compensator::with_start_position`]) refuses a level that is not flat.
+    pub fn with_level(mut self, level: Level) -> Result<Self, Error> {
+        self.set_level(level)?;
+        Ok(self)
+    }
+
+    /// This compensator with a force that depends on the position alone, added to its output
+    /// in both directions (see the module documentation); validated when it was built.
+    ///
+    /// # Errors
+    /// [`Error::Missing`] naming `x`, as [`Compensator::with_level`].
+    pub fn with_position_force(mut self, position_force: PositionForce) -> Result<Self, Error> {
+        self.set_position_force(position_force)?;
+        Ok(self)
     }
 
     /// Replaces the level between two samples (it was validated when it was built). The level
     /// has no memory, so the model state carries over; the output follows the new factor from
     /// the next sample on.
-    pub fn set_level(&mut self, level: Level) {
+    ///
+    /// # Errors
+    /// [`Error::Missing`] naming `x`, as [`Compensator::with_level`]; nothing changes.
+    pub fn set_level(&mut self, level: Level) -> Result<(), Error> {
+        self.placed(level.is_flat())?;
         self.level = level;
+        Ok(())
     }
 
-    /// Sets the position (finite) from which feedforward mode integrates the desired velocity;
-    /// the next step's level is evaluated at `x + v·dt`. Observer mode takes the position from
-    /// its input and does not read this one. A refused value changes nothing.
+    /// Replaces the position force between two samples, as [`Compensator::set_level`].
+    ///
+    /// # Errors
+    /// [`Error::Missing`] naming `x`, as [`Compensator::with_level`]; nothing changes.
+    pub fn set_position_force(&mut self, position_force: PositionForce) -> Result<(), Error> {
+        self.placed(position_force.is_none())?;
+        self.position_force = position_force;
+        Ok(())
+    }
+
+    /// Refuses a position term (unless `none`) in feedforward mode without a start position.
+    fn placed(&self, none: bool) -> Result<(), Error> {
+        if none || self.mode == Mode::Observer || self.position.is_some() {
+            Ok(())
+        } else {
+            Err(Error::Missing { field: Field::x })
+        }
+    }
+
+    /// Sets the position (finite) of the axis: feedforward mode places the level and the
+    /// position force from it, at `x + v·dt` on the next [`Compensator::step`]. Observer mode
+    /// takes the position from its input and does not read this one. A refused value changes
+    /// nothing.
+    ///
+    /// # Errors
+    /// [`Error::NotFiniteValue`] naming `x`.
     pub fn set_position(&mut self, x: f64) -> Result<(), Error> {
         if x.is_finite() {
-            self.position = x;
+            self.position = Some(x);
             Ok(())
         } else {
             Err(Error::NotFiniteValue {
@@ -141,12 +205,55 @@ impl<H: Hysteresis> Compensator<H> {
     /// non-finite input, or a position jump so large that Δx/dt overflows, is reported; the
     /// state and [`Compensator::output`] are left as they were, so a loop can keep applying the
     /// last output.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] naming the input (or `x`, when the integrated feedforward position
+    /// overflows), [`Error::VelocityNotFinite`], or [`Error::Diverged`] for a force that is not
+    /// finite.
     #[inline]
     pub fn step(&mut self, input: f64) -> Result<f64, Error> {
-        // Only a level can refuse a force the model accepted; without one the step runs in
-        // place, exactly as the plain model's, and nothing needs to be put back.
-        let saved = (!self.level.is_flat()).then_some((self.state, self.output));
-        let result = self.step_unchecked(input);
+        self.restoring(|compensator| compensator.step_unchecked(input))
+    }
+
+    /// The friction force for one sample of a planned trajectory: the desired velocity `v` is
+    /// the model's input, and the desired position `x` places the level and the position
+    /// force, so that a loop that knows its position does not integrate the velocity. In
+    /// feedforward mode `x` becomes the compensator's position; in observer mode (a measured
+    /// velocity beside the measured position) it becomes the previous position of the next
+    /// [`Compensator::step`]. A refused sample changes nothing, as in [`Compensator::step`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] naming `v` or `x`, or [`Error::Diverged`] for a force that is not
+    /// finite.
+    #[inline]
+    pub fn step_trajectory(&mut self, v: f64, x: f64) -> Result<f64, Error> {
+        finite(x, Field::x)?;
+        self.restoring(|compensator| {
+            let force = compensator.params.step(
+                &mut compensator.state,
+                v,
+                compensator.dt,
+                Scheme::Implicit,
+            )?;
+            let force = compensator.finish(force, x, v)?;
+            match compensator.mode {
+                Mode::Feedforward => compensator.position = Some(x),
+                Mode::Observer => compensator.state.last_position = Some(x),
+            }
+            Ok(force)
+        })
+    }
+
+    /// Runs `step` and puts the state and output back if it fails.
+    #[inline]
+    fn restoring(
+        &mut self,
+        step: impl FnOnce(&mut Self) -> Result<f64, Error>,
+    ) -> Result<f64, Error> {
+        // Only the position terms can refuse a force the model accepted; without them the step
+        // runs in place, exactly as the plain model's, and nothing needs to be put back.
+        let saved = self.has_terms().then_some((self.state, self.output));
+        let result = step(self);
         if let (Err(_), Some((state, output))) = (&result, saved) {
             self.state = state;
             self.output = output;
@@ -154,25 +261,33 @@ impl<H: Hysteresis> Compensator<H> {
         result
     }
 
-    /// [`Compensator::step`] without putting the state back when the level refuses the force.
+    /// Whether a level or a position force acts on the output.
+    #[inline]
+    fn has_terms(&self) -> bool {
+        !(self.level.is_flat() && self.position_force.is_none())
+    }
+
+    /// [`Compensator::step`] without putting the state back when the terms refuse the force.
     #[inline]
     fn step_unchecked(&mut self, input: f64) -> Result<f64, Error> {
         match self.mode {
             Mode::Feedforward => {
-                let position = self.position + input * self.dt;
-                // Only a level reads the position: without one, a feedforward step is exactly
-                // the plain model's (an overflowing integral of an absurd velocity is harmless).
-                if !self.level.is_flat() && input.is_finite() && !position.is_finite() {
+                let position = self.position.map(|x| x + input * self.dt);
+                let x = position.unwrap_or(0.0);
+                // Only the position terms read the position (and they are refused without a
+                // start): without them, a feedforward step is exactly the plain model's (an
+                // overflowing integral of an absurd velocity is harmless).
+                if self.has_terms() && input.is_finite() && !x.is_finite() {
                     return Err(Error::NotFinite {
                         field: Field::x,
                         index: 0,
-                        value: position,
+                        value: x,
                     });
                 }
                 let force = self
                     .params
                     .step(&mut self.state, input, self.dt, Scheme::Implicit)?;
-                let force = self.finish(force, position, input)?;
+                let force = self.finish(force, x, input)?;
                 self.position = position;
                 Ok(force)
             }
@@ -204,13 +319,13 @@ impl<H: Hysteresis> Compensator<H> {
         }
     }
 
-    /// The plain force `force` with the level at `x` and velocity `v`, recorded as the output.
+    /// The plain force `force` with the position terms at `x` and velocity `v`, recorded as
+    /// the output.
     #[inline]
     fn finish(&mut self, force: f64, x: f64, v: f64) -> Result<f64, Error> {
-        let force = self.level.apply(force, x, v, self.params.sigma2());
-        if !force.is_finite() {
-            return Err(Error::Diverged { index: 0 });
-        }
+        let force = self
+            .params
+            .at_position(force, x, v, &self.level, &self.position_force)?;
         self.output = force;
         Ok(force)
     }
@@ -274,15 +389,20 @@ impl<H: Hysteresis> Compensator<H> {
         self.mode
     }
 
-    /// The position-dependent level ([`Level::none`] unless [`Compensator::with_level`] gave one).
+    /// The position-dependent level ([`Level::none`] unless one was given).
     pub fn level(&self) -> &Level {
         &self.level
     }
 
-    /// The feedforward position: the start given to [`Compensator::set_position`] (0 by
-    /// default) plus the integral of the desired velocities stepped since. Observer mode leaves
-    /// it alone.
-    pub fn position(&self) -> f64 {
+    /// The position force ([`PositionForce::none`] unless one was given).
+    pub fn position_force(&self) -> &PositionForce {
+        &self.position_force
+    }
+
+    /// The feedforward position: the start position given, then the desired positions stepped
+    /// ([`Compensator::step_trajectory`]) or the desired velocities integrated since; `None`
+    /// until a start position is given. Observer mode leaves it alone.
+    pub fn position(&self) -> Option<f64> {
         self.position
     }
 }

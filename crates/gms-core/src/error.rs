@@ -33,6 +33,8 @@ pub enum Field {
     Fc_neg,
     /// Static level for negative velocity.
     Fs_neg,
+    /// Viscous coefficient for negative velocity.
+    sigma2_neg,
     /// Time step.
     dt,
     /// Velocity input.
@@ -73,6 +75,8 @@ pub enum Field {
     cos,
     /// Sine amplitudes of a level's ripple.
     sin,
+    /// Period of a ripple of a level or position force.
+    period,
 }
 
 impl Field {
@@ -91,6 +95,7 @@ impl Field {
             Field::Delta => "Delta",
             Field::Fc_neg => "Fc_neg",
             Field::Fs_neg => "Fs_neg",
+            Field::sigma2_neg => "sigma2_neg",
             Field::dt => "dt",
             Field::v => "v",
             Field::x => "x",
@@ -111,6 +116,7 @@ impl Field {
             Field::trend => "trend",
             Field::cos => "cos",
             Field::sin => "sin",
+            Field::period => "period",
         }
     }
 }
@@ -339,6 +345,26 @@ pub enum Error {
     LevelTooDeep {
         /// The sum that came.
         sum: f64,
+    },
+    /// The half stroke or a ripple's period of a level or position force is below 2²⁰ ulps of
+    /// the largest position it covers, max(|middle| + `half_stroke`, 1): its phase cannot be
+    /// resolved there (docs/model.md#position-dependent-level).
+    PhaseUnresolved {
+        /// `half_stroke`; `period` (of ripple `index`); or `middle`, too far from 0 for the
+        /// half stroke.
+        field: Field,
+        /// Index of the ripple for `period`, 0 otherwise.
+        index: usize,
+        /// The value that came.
+        value: f64,
+        /// max(|middle| + `half_stroke`, 1): the largest |x| at which the phase must be resolved.
+        extent: f64,
+    },
+    /// A value that must be given was not: `x`, the start position of a feedforward
+    /// compensator with a level or a position force.
+    Missing {
+        /// The field that was not given.
+        field: Field,
     },
 }
 
@@ -603,6 +629,51 @@ impl Error {
                  that the factor stays > 0 everywhere), got {}",
                 Shown(sum)
             ),
+            Error::PhaseUnresolved {
+                field,
+                index,
+                value,
+                extent,
+            } => {
+                let finest = crate::level::finest(extent);
+                match field {
+                    Field::period => write!(f, "`ripples[{index}].period`")?,
+                    Field::middle => write!(
+                        f,
+                        "`middle` must leave `half_stroke` at least 2^20 ulps of \
+                         max(|middle| + half_stroke, 1) = {} (>= {}), got middle = {}: the \
+                         position along the stroke cannot be resolved that far from 0",
+                        Shown(extent),
+                        Shown(finest),
+                        Shown(value)
+                    )?,
+                    _ => write!(f, "`{field}`")?,
+                }
+                if field == Field::middle {
+                    return Ok(());
+                }
+                let what = if field == Field::period {
+                    "its phase"
+                } else {
+                    "the position along the stroke"
+                };
+                write!(
+                    f,
+                    " must be at least 2^20 ulps of the largest position covered, max(|middle| \
+                     + half_stroke, 1) = {}, i.e. >= {}, got {}: {what} cannot be resolved there",
+                    Shown(extent),
+                    Shown(finest),
+                    Shown(value)
+                )
+            }
+            Error::Missing { field } => match field {
+                Field::x => f.write_str(
+                    "`x`, the axis's start position, must be given to a feedforward compensator \
+                     with a level or a position force: otherwise they are evaluated from x = 0, \
+                     out of phase with the machine",
+                ),
+                _ => write!(f, "`{field}` must be given"),
+            },
         }
     }
 }
@@ -779,6 +850,21 @@ impl PartialEq for Error {
                 },
             ) => field == other && ripple == r && index == i && same(value, v),
             (Error::LevelTooDeep { sum }, Error::LevelTooDeep { sum: s }) => same(sum, s),
+            (
+                Error::PhaseUnresolved {
+                    field,
+                    index,
+                    value,
+                    extent,
+                },
+                Error::PhaseUnresolved {
+                    field: other,
+                    index: i,
+                    value: v,
+                    extent: e,
+                },
+            ) => field == other && index == i && same(value, v) && same(extent, e),
+            (Error::Missing { field }, Error::Missing { field: other }) => field == other,
             (Error::Diverged { index }, Error::Diverged { index: i })
             | (Error::Overflow { index }, Error::Overflow { index: i }) => index == i,
             (

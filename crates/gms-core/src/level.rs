@@ -1,20 +1,37 @@
-//! A friction level that depends on the position (docs/model.md#position-dependent-level): a
-//! smooth trend along the stroke and periodic ripples (a screw's pitch, a gear's teeth, a
-//! motor's poles) scale the contact part of the friction,
+//! Functions of the position alone (docs/model.md#position-dependent-level): a smooth trend along
+//! the stroke and periodic ripples (a screw's pitch, a gear's teeth, a motor's poles),
 //!
 //! ```text
-//! factor(x) = 1 + t1·P1(p) + t2·P2(p) + Σ_r Σ_k (c_rk·cos(2πk·x/P_r) + s_rk·sin(2πk·x/P_r)),
-//! p = clip((x − middle)/half_stroke, −1, 1),  P1(p) = p,  P2(p) = 1.5·p² − 0.5,
-//! F = factor(x)·(Fh + σ1·dz/dt) + σ2·v = factor(x)·(F_plain − σ2·v) + σ2·v.
+//! r(x) = t1·P1(p) + t2·P2(p) + Σ_r Σ_k (c_rk·cos(2πk·x/P_r) + s_rk·sin(2πk·x/P_r)),
+//! p = clip((x − middle)/half_stroke, −1, 1),  P1(p) = p,  P2(p) = 1.5·p² − 0.5.
 //! ```
 //!
-//! **Validated once.** [`Level::new`] checks every value; afterwards [`Level::factor`] cannot
-//! fail for a finite x. Because |P1|, |P2|, |cos|, |sin| ≤ 1 on the clipped p, the rule
-//! Σ|t| + Σ|c| + Σ|s| < 1 keeps the factor in (0, 2) everywhere.
+//! One implementation of r(x), [`PositionSeries`], serves two effects:
+//!
+//! - [`Level`]: the friction level, factor(x) = 1 + r(x), scales the contact part of the force,
+//!   F = factor(x)·(`F_plain` − σ2(v)·v) + σ2(v)·v. Its coefficients are relative, and the rule
+//!   Σ|t| + Σ|c| + Σ|s| < 1 keeps the factor in (0, 2) everywhere (|P1|, |P2|, |cos|, |sin| ≤ 1
+//!   on the clipped p).
+//! - [`PositionForce`]: r(x) itself, in force units (N, or N·m for a rotary axis), added in both
+//!   directions of motion whatever the friction level: cogging, gear mesh, a gravity-like torque
+//!   along the stroke. Any finite coefficients.
+//!
+//! **Validated once.** [`PositionSeries::new`] checks every value, and refuses a half stroke or a
+//! period whose phase cannot be resolved at the positions the series covers (below); afterwards
+//! the evaluation cannot fail for a finite x.
+//!
+//! **Resolution.** A series covers the stroke, positions up to
+//! extent = max(|middle| + `half_stroke`, 1) in magnitude (at least the unit interval: positions
+//! are in metres or radians). There an f64 position is resolved only to an ulp of the extent, so
+//! a period (or half stroke) must span at least 2²⁰ ulps of it, about a millionth of a period per
+//! representable step; 2²⁰ ulps of 1 are 2.3e-10 m. A finer one would be sampled by rounding,
+//! and two correct formulas disagree at the first digit: at a period of 1e-300, x/P is a whole
+//! number in f64 for every |x| above 2^52·1e-300 ≈ 4.5e-285, so the reduced phase here is 0,
+//! while numpy's unreduced formula takes the cosine of a rounded angle of up to some 1e300 rad.
 //!
 //! **Bounded work.** One `sin` and one `cos` per ripple; the harmonics follow by the
-//! angle-addition recurrence (a rotation by the first harmonic's angle per harmonic), so a
-//! factor costs at most [`MAX_RIPPLES`] sincos pairs and [`MAX_RIPPLES`]·[`MAX_HARMONICS`]
+//! angle-addition recurrence (a rotation by the first harmonic's angle per harmonic), so an
+//! evaluation costs at most [`MAX_RIPPLES`] sincos pairs and [`MAX_RIPPLES`]·[`MAX_HARMONICS`]
 //! rotations.
 //!
 //! **Accuracy.** The phase is x/P reduced to the nearest whole period before the sincos, so
@@ -23,15 +40,16 @@
 //! has (it is the resolution of x relative to the period). Each rotation of the recurrence adds
 //! a few ulps to the harmonic: after [`MAX_HARMONICS`] harmonics the cos and sin are within
 //! 1e-15 of libm's `cos(k·θ)`, `sin(k·θ)` at the same θ (tests/level.rs checks 4e-15 on the
-//! whole factor up to |x/P| = 1e12). The numpy formula of `leuven_rt.level` does not reduce
+//! whole factor up to |x/P| = 1e12). The numpy formula of `leuven_rt.reference` does not reduce
 //! the phase: its `k·2π·x/P` rounds by up to about 3·k·2π·|x/P|·1.1e-16 rad, so the two agree
-//! to 1e-12 while that stays below 1e-12 (|x/P| up to about 20 with the eighth harmonic at
-//! full amplitude; the tests compare them there, and Rust with the reduced formula beyond).
+//! to 1e-12 (relative to the sum of the amplitudes) while that stays below 1e-12 (|x/P| up to
+//! about 20 with the eighth harmonic at full amplitude; the tests compare them there, and Rust
+//! with the reduced formula beyond).
 
 use crate::checks::positive;
 use crate::error::{Error, Field};
 
-/// The most ripples (distinct periods) a [`Level`] holds.
+/// The most ripples (distinct periods) a series holds.
 pub const MAX_RIPPLES: usize = 2;
 
 /// The most harmonics of each ripple.
@@ -40,8 +58,22 @@ pub const MAX_HARMONICS: usize = 8;
 /// 2^52: every f64 of at least this magnitude is a whole number.
 const WHOLE: f64 = 4_503_599_627_370_496.0;
 
-/// One ripple as a caller gives it: the period and the harmonics' relative amplitudes
-/// (`cos[k-1]`, `sin[k-1]` for harmonic k). Checked by [`Level::new`].
+/// 2^20: the ulps of the extent a period or a half stroke must span (see the module documentation).
+const RESOLUTION_ULPS: f64 = 1_048_576.0;
+
+/// The finest period or half stroke resolved at positions up to `extent` (≥ 1): 2^20 ulps of
+/// it, and infinite when the extent is (|middle| + `half_stroke` overflowed).
+pub(crate) fn finest(extent: f64) -> f64 {
+    if extent.is_finite() {
+        // The distance to the next f64 up: one ulp (infinite above f64::MAX).
+        RESOLUTION_ULPS * (f64::from_bits(extent.to_bits() + 1) - extent)
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// One ripple as a caller gives it: the period and the harmonics' amplitudes (`cos[k-1]`,
+/// `sin[k-1]` for harmonic k). Checked by [`PositionSeries::new`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RippleTerms<'a> {
     /// The period \[m or rad\].
@@ -96,9 +128,10 @@ impl Ripple {
     }
 }
 
-/// A validated position-dependent friction level: `Copy`, fixed size, no allocation.
+/// r(x) of the module documentation, validated: `Copy`, fixed size, no allocation. The shape
+/// shared by [`Level`] and [`PositionForce`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Level {
+pub struct PositionSeries {
     middle: f64,
     half_stroke: f64,
     trend: [f64; 2],
@@ -106,16 +139,15 @@ pub struct Level {
     ripples: [Ripple; MAX_RIPPLES],
 }
 
-impl Default for Level {
+impl Default for PositionSeries {
     fn default() -> Self {
-        Self::none()
+        Self::zero()
     }
 }
 
-impl Level {
-    /// The flat level: factor ≡ 1, and a compensator with it gives exactly the plain model's
-    /// output.
-    pub const fn none() -> Self {
+impl PositionSeries {
+    /// r ≡ 0: no trend and no ripple.
+    pub const fn zero() -> Self {
         Self {
             middle: 0.0,
             half_stroke: 1.0,
@@ -125,10 +157,26 @@ impl Level {
         }
     }
 
+    /// The finest period or half stroke whose phase is resolved at positions up to `extent`
+    /// (max(|middle| + `half_stroke`, 1), what [`Error::PhaseUnresolved`] carries): 2²⁰ ulps of
+    /// it, and infinite for an infinite extent. The bound a refused period or half stroke had to
+    /// reach.
+    pub fn finest(extent: f64) -> f64 {
+        finest(extent)
+    }
+
     /// Validates once: `middle` finite; `half_stroke` finite and > 0 (not subnormal); `trend`
     /// finite; at most [`MAX_RIPPLES`] ripples, each with a finite period > 0 (not subnormal),
-    /// `cos` and `sin` of the same length, at most [`MAX_HARMONICS`], all finite; and
-    /// Σ|trend| + Σ|cos| + Σ|sin| < 1, so that the factor is positive everywhere.
+    /// `cos` and `sin` of the same length, at most [`MAX_HARMONICS`], all finite; and the half
+    /// stroke and every period at least 2²⁰ ulps of max(|middle| + `half_stroke`, 1), so that
+    /// their phase is resolved at the positions the series covers (see the module documentation).
+    ///
+    /// # Errors
+    /// The first rule broken, naming the field and carrying the value:
+    /// [`Error::NotFiniteValue`] (`middle`), [`Error::NotPositive`] (`half_stroke`),
+    /// [`Error::NotFinite`] (`trend`), [`Error::TooManyRipples`], [`Error::RipplePeriod`],
+    /// [`Error::HarmonicLengths`], [`Error::TooManyHarmonics`], [`Error::RippleCoefficient`], or
+    /// [`Error::PhaseUnresolved`] (`half_stroke`, `middle` or `period`).
     pub fn new(
         middle: f64,
         half_stroke: f64,
@@ -142,6 +190,25 @@ impl Level {
             });
         }
         let half_stroke = positive(half_stroke, Field::half_stroke)?;
+        // The largest |x| of the stroke (an overflowing sum is infinite, and nothing resolves it).
+        let reach = libm::fabs(middle) + half_stroke;
+        let extent = if reach > 1.0 { reach } else { 1.0 };
+        let resolved = finest(extent);
+        if half_stroke < resolved {
+            // A half stroke too fine even about 0 is its own fault; otherwise the middle is too
+            // far from 0 for it.
+            let (field, value) = if half_stroke < finest(1.0) {
+                (Field::half_stroke, half_stroke)
+            } else {
+                (Field::middle, middle)
+            };
+            return Err(Error::PhaseUnresolved {
+                field,
+                index: 0,
+                value,
+                extent,
+            });
+        }
         for (index, &value) in trend.iter().enumerate() {
             if !value.is_finite() {
                 return Err(Error::NotFinite {
@@ -156,33 +223,36 @@ impl Level {
                 count: ripples.len(),
             });
         }
-        let mut level = Self {
+        let mut series = Self {
             middle,
             half_stroke,
             trend,
             ripple_count: ripples.len(),
             ripples: [Ripple::EMPTY; MAX_RIPPLES],
         };
-        let mut depth = libm::fabs(trend[0]) + libm::fabs(trend[1]);
-        for (ripple, (terms, slot)) in ripples.iter().zip(level.ripples.iter_mut()).enumerate() {
+        for (ripple, (terms, slot)) in ripples.iter().zip(series.ripples.iter_mut()).enumerate() {
             *slot = checked_ripple(ripple, terms)?;
-            depth += slot
-                .cos
-                .iter()
-                .chain(&slot.sin)
-                .map(|c| libm::fabs(*c))
-                .sum::<f64>();
+            if slot.period < resolved {
+                return Err(Error::PhaseUnresolved {
+                    field: Field::period,
+                    index: ripple,
+                    value: slot.period,
+                    extent,
+                });
+            }
         }
-        // Every term is finite, so the sum is a number (perhaps an overflowed inf).
-        if depth >= 1.0 {
-            return Err(Error::LevelTooDeep { sum: depth });
-        }
-        Ok(level)
+        Ok(series)
     }
 
-    /// factor(x) of the module documentation; NaN for a non-finite x (never a panic).
+    /// r(x); NaN for a non-finite x (never a panic).
     #[inline]
-    pub fn factor(&self, x: f64) -> f64 {
+    pub fn value(&self, x: f64) -> f64 {
+        self.value_from(0.0, x)
+    }
+
+    /// `base` + r(x), summed from `base` (so that the level's 1 + r(x) rounds as one sum).
+    #[inline]
+    fn value_from(&self, base: f64, x: f64) -> f64 {
         if !x.is_finite() {
             return f64::NAN;
         }
@@ -196,29 +266,31 @@ impl Level {
         } else {
             scaled
         };
-        let mut factor = 1.0 + self.trend[0] * p + self.trend[1] * (1.5 * p * p - 0.5);
+        let mut sum = base + self.trend[0] * p + self.trend[1] * (1.5 * p * p - 0.5);
         for ripple in &self.ripples[..self.ripple_count] {
-            factor += ripple.value(x);
+            sum += ripple.value(x);
         }
-        factor
+        sum
     }
 
-    /// The force with this level from the plain model's force `force` at position `x` and
-    /// velocity `v`: factor(x)·(force − σ2·v) + σ2·v. The flat level returns `force` itself,
-    /// bit for bit.
-    #[inline]
-    pub fn apply(&self, force: f64, x: f64, v: f64, sigma2: f64) -> f64 {
-        if self.is_flat() {
-            return force;
-        }
-        let viscous = sigma2 * v;
-        self.factor(x) * (force - viscous) + viscous
-    }
-
-    /// Whether factor ≡ 1: no trend and no ripple ([`Level::none`], or a level given as zeros
-    /// with no ripples).
-    pub fn is_flat(&self) -> bool {
+    /// Whether r ≡ 0: no trend and no ripple.
+    pub fn is_zero(&self) -> bool {
         self.ripple_count == 0 && self.trend == [0.0; 2]
+    }
+
+    /// Σ|trend| + Σ|cos| + Σ|sin|: a bound on |r(x)| (perhaps an overflowed inf).
+    pub fn amplitude(&self) -> f64 {
+        let mut sum = libm::fabs(self.trend[0]) + libm::fabs(self.trend[1]);
+        for ripple in &self.ripples[..self.ripple_count] {
+            let harmonics = &ripple.cos[..ripple.harmonics];
+            let sines = &ripple.sin[..ripple.harmonics];
+            sum += harmonics
+                .iter()
+                .chain(sines)
+                .map(|c| libm::fabs(*c))
+                .sum::<f64>();
+        }
+        sum
     }
 
     /// The position of the middle of the stroke.
@@ -250,6 +322,157 @@ impl Level {
                 cos: &ripple.cos[..ripple.harmonics],
                 sin: &ripple.sin[..ripple.harmonics],
             })
+    }
+}
+
+/// A validated position-dependent friction level, factor(x) = 1 + r(x): `Copy`, fixed size, no
+/// allocation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Level {
+    series: PositionSeries,
+}
+
+impl Level {
+    /// The flat level: factor ≡ 1, and a compensator with it gives exactly the plain model's
+    /// output.
+    pub const fn none() -> Self {
+        Self {
+            series: PositionSeries::zero(),
+        }
+    }
+
+    /// Validates once: the rules of [`PositionSeries::new`], and
+    /// Σ|trend| + Σ|cos| + Σ|sin| < 1, so that the factor is positive everywhere.
+    ///
+    /// # Errors
+    /// Those of [`PositionSeries::new`], or [`Error::LevelTooDeep`].
+    pub fn new(
+        middle: f64,
+        half_stroke: f64,
+        trend: [f64; 2],
+        ripples: &[RippleTerms<'_>],
+    ) -> Result<Self, Error> {
+        let series = PositionSeries::new(middle, half_stroke, trend, ripples)?;
+        // Every term is finite, so the sum is a number (perhaps an overflowed inf).
+        let depth = series.amplitude();
+        if depth >= 1.0 {
+            return Err(Error::LevelTooDeep { sum: depth });
+        }
+        Ok(Self { series })
+    }
+
+    /// factor(x) = 1 + r(x); NaN for a non-finite x (never a panic).
+    #[inline]
+    pub fn factor(&self, x: f64) -> f64 {
+        self.series.value_from(1.0, x)
+    }
+
+    /// The force with this level from the plain model's force `force` at position `x` and
+    /// velocity `v`, with `sigma2` the viscous coefficient that applies to v
+    /// ([`Params::sigma2_at`](crate::Params::sigma2_at)): factor(x)·(force − σ2·v) + σ2·v. The
+    /// flat level returns `force` itself, bit for bit.
+    #[inline]
+    pub fn apply(&self, force: f64, x: f64, v: f64, sigma2: f64) -> f64 {
+        if self.is_flat() {
+            return force;
+        }
+        let viscous = sigma2 * v;
+        self.factor(x) * (force - viscous) + viscous
+    }
+
+    /// Whether factor ≡ 1: no trend and no ripple ([`Level::none`], or a level given as zeros
+    /// with no ripples).
+    pub fn is_flat(&self) -> bool {
+        self.series.is_zero()
+    }
+
+    /// r(x), the level's departure from 1.
+    pub fn series(&self) -> &PositionSeries {
+        &self.series
+    }
+
+    /// The position of the middle of the stroke.
+    pub fn middle(&self) -> f64 {
+        self.series.middle()
+    }
+
+    /// Half the stroke over which the trend varies.
+    pub fn half_stroke(&self) -> f64 {
+        self.series.half_stroke()
+    }
+
+    /// The trend's Legendre coefficients (t1, t2).
+    pub fn trend(&self) -> [f64; 2] {
+        self.series.trend()
+    }
+
+    /// Number of ripples.
+    pub fn ripple_count(&self) -> usize {
+        self.series.ripple_count()
+    }
+
+    /// Ripple `index` as given (its period, cos and sin amplitudes), or `None` beyond the count.
+    pub fn ripple(&self, index: usize) -> Option<RippleTerms<'_>> {
+        self.series.ripple(index)
+    }
+}
+
+/// A validated force that depends on the position alone, r(x) in N (or N·m): added to the
+/// friction in both directions of motion, not scaled by the level. `Copy`, fixed size, no
+/// allocation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PositionForce {
+    series: PositionSeries,
+}
+
+impl PositionForce {
+    /// No position force: r ≡ 0, and the output is the one without it, bit for bit.
+    pub const fn none() -> Self {
+        Self {
+            series: PositionSeries::zero(),
+        }
+    }
+
+    /// Validates once: the rules of [`PositionSeries::new`]; the trend and the amplitudes are
+    /// forces \[N or N·m\], any finite values.
+    ///
+    /// # Errors
+    /// Those of [`PositionSeries::new`].
+    pub fn new(
+        middle: f64,
+        half_stroke: f64,
+        trend: [f64; 2],
+        ripples: &[RippleTerms<'_>],
+    ) -> Result<Self, Error> {
+        Ok(Self {
+            series: PositionSeries::new(middle, half_stroke, trend, ripples)?,
+        })
+    }
+
+    /// The force r(x) at position `x`; NaN for a non-finite x (never a panic).
+    #[inline]
+    pub fn force(&self, x: f64) -> f64 {
+        self.series.value(x)
+    }
+
+    /// `force` + r(x): the output with this position force added. No position force returns
+    /// `force` itself, bit for bit.
+    #[inline]
+    pub fn apply(&self, force: f64, x: f64) -> f64 {
+        if self.is_none() {
+            return force;
+        }
+        force + self.force(x)
+    }
+
+    /// Whether r ≡ 0: no trend and no ripple.
+    pub fn is_none(&self) -> bool {
+        self.series.is_zero()
+    }
+
+    /// r(x) and its shape.
+    pub fn series(&self) -> &PositionSeries {
+        &self.series
     }
 }
 

@@ -11,7 +11,9 @@
 //! - [`MassSystem`]: a mass on the friction model, driven by a force, with an optional spring
 //!   (to ground, or dragged: the stick-slip rig).
 //! - [`Level`]: a friction level that depends on the position (trend along the stroke and
-//!   periodic ripples), applied by the [`Compensator`] and by [`Params::simulate_position_level`].
+//!   periodic ripples), and [`PositionForce`]: a force of the position alone (cogging, gear
+//!   mesh, gravity along the stroke), both of one shape ([`PositionSeries`]); applied by the
+//!   [`Compensator`], [`Params::simulate_position_level`] and [`Params::simulate_level`].
 //! - [`Params`]: one validated parameter set that drives any number of channels, each a
 //!   [`State`]; [`Params::step`] and the block calls [`Params::simulate`] advance them.
 //!
@@ -46,7 +48,7 @@ pub use compensator::{evaluation_bound, Compensator, Mode};
 pub use error::{Error, Field, InChannel, Shown};
 pub use hysteresis::{Hysteresis, Linear, MaxwellSlip, Piece, Trial, MIN_DELTA_RATIO};
 pub use identification::{OnlineIdentifier, Rls, RlsSettings, SlipRegressor};
-pub use level::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
+pub use level::{Level, PositionForce, PositionSeries, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use math::Power;
 pub use mechanics::{MassSample, MassState, MassSystem, Spring, Trajectory};
 pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};

@@ -3,12 +3,13 @@
 //! The discrete step is the contract of docs/model.md#discrete-step. The velocity vₖ is held over the step;
 //! the state equation dz/dt = f(z, v) = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ is advanced by backward Euler
 //! (`Implicit`, the default) or forward Euler (`Explicit`); the memory of the hysteresis is
-//! committed at the new z; the output is Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2·vₖ.
+//! committed at the new z; the output is Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2(vₖ)·vₖ, with
+//! σ2(v) = `sigma2_neg` for v < 0 and `sigma2` otherwise.
 
 use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::{Hysteresis, Linear, MaxwellSlip};
-use crate::level::Level;
+use crate::level::{Level, PositionForce};
 use crate::math::Power;
 use crate::solver::{Residual, Solution};
 use crate::stribeck::Stribeck;
@@ -33,6 +34,8 @@ pub struct Params<H> {
     n_less_one: Power,
     sigma1: f64,
     sigma2: f64,
+    /// σ2 for v < 0 (σ2 unless [`Params::with_sigma2_neg`] gave another).
+    sigma2_neg: f64,
     hysteresis: H,
 }
 
@@ -78,8 +81,20 @@ impl<H: Hysteresis> Params<H> {
             n_less_one: Power::new(n - 1.0),
             sigma1,
             sigma2,
+            sigma2_neg: sigma2,
             hysteresis,
         })
+    }
+
+    /// These parameters with the viscous coefficient `sigma2_neg` (finite, ≥ 0) for v < 0:
+    /// the viscous force becomes σ2(v)·v, σ2(v) = `sigma2_neg` for v < 0 and `sigma2` for v ≥ 0
+    /// (docs/model.md#friction-force). Without it, σ2 applies in both directions.
+    ///
+    /// # Errors
+    /// [`Error::Negative`] naming `sigma2_neg`.
+    pub fn with_sigma2_neg(self, sigma2_neg: f64) -> Result<Self, Error> {
+        let sigma2_neg = non_negative(sigma2_neg, Field::sigma2_neg)?;
+        Ok(Self { sigma2_neg, ..self })
     }
 
     /// The Stribeck curve.
@@ -94,9 +109,23 @@ impl<H: Hysteresis> Params<H> {
     pub fn sigma1(&self) -> f64 {
         self.sigma1
     }
-    /// Viscous coefficient σ2.
+    /// Viscous coefficient σ2 (for v ≥ 0).
     pub fn sigma2(&self) -> f64 {
         self.sigma2
+    }
+    /// Viscous coefficient for v < 0 (σ2 unless [`Params::with_sigma2_neg`] gave another).
+    pub fn sigma2_neg(&self) -> f64 {
+        self.sigma2_neg
+    }
+    /// The viscous coefficient that applies to the velocity `v`: `sigma2_neg` for v < 0,
+    /// `sigma2` otherwise.
+    #[inline]
+    pub fn sigma2_at(&self, v: f64) -> f64 {
+        if v < 0.0 {
+            self.sigma2_neg
+        } else {
+            self.sigma2
+        }
     }
     /// The hysteresis force.
     pub fn hysteresis(&self) -> &H {
@@ -199,11 +228,14 @@ impl<H: Hysteresis> Params<H> {
         })
     }
 
-    /// [`Params::simulate_position`] with a position-dependent level
+    /// [`Params::simulate_position`] with a position-dependent level and a position force
     /// (docs/model.md#position-dependent-level): each force is
-    /// `level.apply(F, x, v, sigma2)`, with vₖ the step's velocity (0 on a fresh channel). The
-    /// state evolves exactly as without the level (it only scales the output), and a flat
-    /// level gives [`Params::simulate_position`]'s forces bit for bit. All or nothing.
+    /// `position_force.apply(level.apply(F, x, v, σ2(v)), x)`, that is
+    /// factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x), with vₖ the step's velocity (0 on a fresh
+    /// channel). The state evolves exactly as without them (they act on the output only), and
+    /// [`Level::none`] with [`PositionForce::none`] give [`Params::simulate_position`]'s forces
+    /// bit for bit. All or nothing; a force they make non-finite is [`Error::Diverged`].
+    #[allow(clippy::too_many_arguments)] // the block call, plus the two position terms
     pub fn simulate_position_level(
         &self,
         state: &mut State<H::Memory>,
@@ -211,24 +243,76 @@ impl<H: Hysteresis> Params<H> {
         dt: f64,
         scheme: Scheme,
         level: &Level,
+        position_force: &PositionForce,
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
         run_block(state, x, out, |state, x| {
             let v = position_velocity(state, x, dt)?;
-            let force = level.apply(
-                self.advance_position(state, x, dt, scheme)?,
-                x,
-                v,
-                self.sigma2,
-            );
+            let force = self.advance_position(state, x, dt, scheme)?;
             // run_block puts the state back on this error, like on any other.
-            if force.is_finite() {
-                Ok(force)
-            } else {
-                Err(Error::Diverged { index: 0 })
-            }
+            self.at_position(force, x, v, level, position_force)
         })
+    }
+
+    /// [`Params::simulate`] with a position-dependent level and a position force evaluated at
+    /// the positions `x` (same length as `v`): the velocity `v` is the model's input, as a log
+    /// with a measured velocity column drives it, and each force is
+    /// `position_force.apply(level.apply(F, xₖ, vₖ, σ2(vₖ)), xₖ)`. The positions only place
+    /// the two terms: the state evolves as in [`Params::simulate`] (the previous position of
+    /// position input is not touched), and [`Level::none`] with [`PositionForce::none`] give its
+    /// forces bit for bit. All or nothing, like the other block calls.
+    ///
+    /// # Errors
+    /// [`Error::InputLengthMismatch`] naming `x`, [`Error::LengthMismatch`] for `out`, a bad
+    /// `dt`, [`Error::NotFinite`] naming `v` or `x` and the sample, or [`Error::Diverged`].
+    #[allow(clippy::too_many_arguments)] // the block call, plus the positions and the two terms
+    pub fn simulate_level(
+        &self,
+        state: &mut State<H::Memory>,
+        v: &[f64],
+        x: &[f64],
+        dt: f64,
+        scheme: Scheme,
+        level: &Level,
+        position_force: &PositionForce,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        if x.len() != v.len() {
+            return Err(Error::InputLengthMismatch {
+                field: Field::x,
+                expected: v.len(),
+                got: x.len(),
+            });
+        }
+        check_block(v, Field::v, dt, out)?;
+        all_finite(x, Field::x)?;
+        let mut positions = x.iter();
+        run_block(state, v, out, |state, v| {
+            // The lengths are equal, so there is always a position; NaN would be refused below.
+            let x = positions.next().copied().unwrap_or(f64::NAN);
+            let force = self.advance(state, v, dt, scheme)?;
+            self.at_position(force, x, v, level, position_force)
+        })
+    }
+
+    /// The plain force `force` of a step at position `x` and velocity `v` with the level and
+    /// the position force: refused as a divergence if they make it non-finite.
+    #[inline]
+    pub(crate) fn at_position(
+        &self,
+        force: f64,
+        x: f64,
+        v: f64,
+        level: &Level,
+        position_force: &PositionForce,
+    ) -> Result<f64, Error> {
+        let force = position_force.apply(level.apply(force, x, v, self.sigma2_at(v)), x);
+        if force.is_finite() {
+            Ok(force)
+        } else {
+            Err(Error::Diverged { index: 0 })
+        }
     }
 
     /// [`Params::simulate_position`], also writing the deflection z after every sample into
@@ -292,7 +376,7 @@ impl<H: Hysteresis> Params<H> {
     /// A diverging step (non-finite z⁺ or force) must leave the state untouched. Committing
     /// into a copy of the memory and storing it back costs two copies of the memory per step
     /// (2 × 256 bytes at N = 32), so the force's finiteness is decided before committing
-    /// instead: |Fh(z⁺)| ≤ B (`force_bound`), hence |F| ≤ B + |σ1·(z⁺ − z)/dt| + |σ2·v|, and
+    /// instead: |Fh(z⁺)| ≤ B (`force_bound`), hence |F| ≤ B + |σ1·(z⁺ − z)/dt| + |σ2(v)·v|, and
     /// when that sum is below half the f64 range, rounding in the sum of Fh cannot carry F to
     /// infinity either, so the memory is committed in place. Only forces near the f64 range
     /// (or a hysteresis without a bound) take the copying path.
@@ -313,7 +397,7 @@ impl<H: Hysteresis> Params<H> {
             return Err(Error::Diverged { index: 0 });
         }
         let micro_viscous = self.sigma1 * (z_next - z) / dt;
-        let viscous = self.sigma2 * v;
+        let viscous = self.sigma2_at(v) * v;
         let bound =
             self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
         let force = if bound < 0.5 * f64::MAX {

@@ -38,6 +38,16 @@ fn kinds_are_the_variant_names_in_snake_case() {
         ),
         (Error::StiffnessSumOverflow, "stiffness_sum_overflow"),
         (Error::Diverged { index: 7 }, "diverged"),
+        (
+            Error::PhaseUnresolved {
+                field: Field::period,
+                index: 0,
+                value: 1e-12,
+                extent: 1.0,
+            },
+            "phase_unresolved",
+        ),
+        (Error::Missing { field: Field::x }, "missing"),
     ];
     for (error, kind) in cases {
         assert_eq!(error.kind(), kind);
@@ -48,7 +58,7 @@ fn kinds_are_the_variant_names_in_snake_case() {
 #[test]
 fn every_kind_is_listed_once_and_spelled_in_snake_case() {
     let mut kinds = Error::KINDS.to_vec();
-    assert!(kinds.len() >= 27, "{kinds:?}");
+    assert!(kinds.len() >= 29, "{kinds:?}");
     for kind in &kinds {
         assert!(
             kind.chars().all(|c| c.is_ascii_lowercase() || c == '_') && !kind.starts_with('_'),

@@ -125,6 +125,59 @@ fn a_constant_force_slides_the_mass_at_the_steady_velocity() {
     );
 }
 
+/// Pushed backwards, the mass slides at the velocity where u = −`Fc_neg` + `sigma2_neg`·v∞: the
+/// implicit step solves the momentum equation with the viscous coefficient of the new
+/// velocity's direction.
+#[test]
+fn a_constant_backward_force_slides_at_the_negative_directions_velocity() {
+    let stribeck = Stribeck::asymmetric(1.0, 1.5, 0.8, 1.2, 1e-3, 2.0).unwrap();
+    let bank = MaxwellSlip::new([1.0, 1.0], [1e-6, 2e-6]).unwrap();
+    let params = Params::new(stribeck, 2.0, 100.0, 10.0, bank)
+        .and_then(|params| params.with_sigma2_neg(4.0))
+        .unwrap();
+    let system = MassSystem::new(params, 0.1, Spring::NONE).unwrap();
+    let mut state = system.state_at(0.0, 0.0);
+    let mut sample = None;
+    for _ in 0..20_000 {
+        sample = Some(
+            system
+                .step(&mut state, -1.2, 1e-3, Scheme::Implicit)
+                .unwrap(),
+        );
+    }
+    let sample = sample.unwrap();
+    // −1.2 = −0.8 + 4·v∞: v∞ = −0.1 (with sigma2 = 10 it would be −0.04).
+    assert!((sample.v + 0.1).abs() < 1e-12, "v = {}", sample.v);
+    assert!(
+        (sample.friction + 1.2).abs() < 1e-9,
+        "F = {}",
+        sample.friction
+    );
+    // The same sigma2 in both directions is the symmetric model, bit for bit.
+    let symmetric = MassSystem::new(
+        friction([1.0, 1.0], [1e-6, 2e-6], 30.0, 0.4)
+            .with_sigma2_neg(0.4)
+            .unwrap(),
+        1.0,
+        Spring::ground(50.0).unwrap(),
+    )
+    .unwrap();
+    let plain = MassSystem::new(
+        friction([1.0, 1.0], [1e-6, 2e-6], 30.0, 0.4),
+        1.0,
+        Spring::ground(50.0).unwrap(),
+    )
+    .unwrap();
+    let (mut a, mut b) = (symmetric.state_at(0.01, 0.0), plain.state_at(0.01, 0.0));
+    for k in 0..500 {
+        let u = 3.0 * (0.05 * f64::from(k)).sin();
+        assert_eq!(
+            symmetric.step(&mut a, u, 1e-3, Scheme::Implicit).unwrap(),
+            plain.step(&mut b, u, 1e-3, Scheme::Implicit).unwrap()
+        );
+    }
+}
+
 #[test]
 fn the_dragged_spring_end_moves_at_the_drive_speed() {
     let params = friction([1.0, 1.0], [1e-6, 2e-6], 30.0, 0.4);

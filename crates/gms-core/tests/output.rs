@@ -1,8 +1,8 @@
 //! The step's formulas of docs/model.md#discrete-step, recomputed from the states before and
 //! after every step of random runs:
 //!
-//! - both schemes output Fₖ = Fh(z⁺) + sigma1·(z⁺ − z)/dt + sigma2·vₖ, with Fh(z⁺) the trial from
-//!   the memory at step start;
+//! - both schemes output Fₖ = Fh(z⁺) + sigma1·(z⁺ − z)/dt + σ2(vₖ)·vₖ, with Fh(z⁺) the trial from
+//!   the memory at step start and σ2(v) = `sigma2_neg` for v < 0, `sigma2` otherwise;
 //! - the explicit scheme moves z⁺ = z + dt·f(z, vₖ), f(z, v) = v − |v|·sgn(Fh)·|Fh/g(v)|ⁿ, with
 //!   g(v) from the DESIGN formula (not the crate's `Stribeck::g`).
 //!
@@ -32,14 +32,19 @@ fn formulas_hold<const N: usize>(
 
         let hysteresis = bank.trial(&before.memory, state.z).force;
         let micro_viscous = params.sigma1() * (state.z - before.z) / dt;
-        let viscous = params.sigma2() * v;
+        let sigma2 = if v < 0.0 {
+            params.sigma2_neg()
+        } else {
+            params.sigma2()
+        };
+        let viscous = sigma2 * v;
         let expected = hysteresis + micro_viscous + viscous;
         // Three roundings of terms that may partly cancel.
         let rounding =
             4.0 * f64::EPSILON * (hysteresis.abs() + micro_viscous.abs() + viscous.abs());
         prop_assert!(
             (force - expected).abs() <= rounding,
-            "step {}: F = {}, Fh + sigma1·Δz/dt + sigma2·v = {} + {} + {}",
+            "step {}: F = {}, Fh + sigma1·Δz/dt + σ2(v)·v = {} + {} + {}",
             k,
             force,
             hysteresis,

@@ -38,7 +38,7 @@ const NOT_POSITIVE: [f64; 8] = [
 /// Values that break "finite and ≥ 0".
 const NEGATIVE: [f64; 5] = [-1e-300, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 
-const FIELDS: [Field; 15] = [
+const FIELDS: [Field; 16] = [
     Field::Fc,
     Field::Fs,
     Field::Vs,
@@ -51,6 +51,7 @@ const FIELDS: [Field; 15] = [
     Field::Delta,
     Field::Fc_neg,
     Field::Fs_neg,
+    Field::sigma2_neg,
     Field::dt,
     Field::v,
     Field::x,
@@ -280,6 +281,37 @@ fn model_coefficients_follow_their_rules() {
     for zero in [0.0, -0.0] {
         assert!(Params::new(curve(), 1.0, zero, zero, elements()).is_ok());
     }
+}
+
+#[test]
+fn the_viscous_coefficient_of_negative_velocity_follows_sigma2s_rule() {
+    let params = Params::new(curve(), 1.0, 1.0, 0.4, elements()).unwrap();
+    for bad in NEGATIVE {
+        assert_eq!(
+            params.with_sigma2_neg(bad),
+            Err(Error::Negative {
+                field: Field::sigma2_neg,
+                value: bad
+            }),
+            "sigma2_neg = {bad}"
+        );
+    }
+    assert_eq!(
+        params.with_sigma2_neg(-1.0).unwrap_err().to_string(),
+        "`sigma2_neg` must be finite and >= 0, got -1.0"
+    );
+    // Not given, it is sigma2: the same parameters as given equal to sigma2.
+    assert_eq!(params.sigma2_neg(), 0.4);
+    assert_eq!(params.with_sigma2_neg(0.4), Ok(params));
+    let asymmetric = params.with_sigma2_neg(0.0).unwrap();
+    assert_eq!(
+        (
+            asymmetric.sigma2_at(-1e-9),
+            asymmetric.sigma2_at(0.0),
+            asymmetric.sigma2_at(-0.0)
+        ),
+        (0.0, 0.4, 0.4)
+    );
 }
 
 proptest! {

@@ -1,6 +1,7 @@
 //! At a constant velocity v ≠ 0 the friction force settles on the Stribeck curve plus viscous
-//! friction, F → s(v) + sigma2·v, to a relative 1e-9: in both directions, with asymmetric
-//! levels, for the implicit scheme and for the explicit one where its step is stable.
+//! friction, F → s(v) + σ2(v)·v, to a relative 1e-9: in both directions, with asymmetric
+//! levels and viscous coefficients (`sigma2_neg` for v < 0), for the implicit scheme and for
+//! the explicit one where its step is stable.
 //!
 //! "Enough steps" is computed, not guessed. The element stiffnesses are drawn through the
 //! dimensionless step ρᵢ = dt·|v|·kᵢ/g(v) (kᵢ = Wᵢ/Δᵢ), which bounds the rate at which the state
@@ -59,13 +60,13 @@ fn steps_to_settle<const N: usize>(
     steps + 2
 }
 
-/// The Stribeck curve, n, sigma1 and sigma2 of a case.
-type Model = (Stribeck, f64, f64, f64);
+/// The Stribeck curve, n, sigma1, sigma2 and `sigma2_neg` of a case.
+type Model = (Stribeck, f64, f64, f64, f64);
 
 /// Parameters whose elements have saturation forces in proportion to `weights` (adding up to
 /// `strength` times the peak level) and the dimensionless steps `rho` at velocity `v` and `dt`.
 fn build<const N: usize>(
-    (stribeck, n, sigma1, sigma2): Model,
+    (stribeck, n, sigma1, sigma2, sigma2_neg): Model,
     (weights, strength, rho): ([f64; N], f64, [f64; N]),
     v: f64,
     dt: f64,
@@ -74,14 +75,17 @@ fn build<const N: usize>(
     let w = saturation_forces(weights, stribeck.peak(), strength);
     let delta = core::array::from_fn(|i| w[i] * dt * v.abs() / (rho[i] * g));
     let elements = MaxwellSlip::new(w, delta).expect("valid elements");
-    Params::new(stribeck, n, sigma1, sigma2, elements).expect("valid parameters")
+    Params::new(stribeck, n, sigma1, sigma2, elements)
+        .and_then(|params| params.with_sigma2_neg(sigma2_neg))
+        .expect("valid parameters")
 }
 
-/// A Stribeck curve with asymmetric levels, n, sigma1 and sigma2.
+/// A Stribeck curve with asymmetric levels, n, sigma1, and sigma2 and `sigma2_neg`.
 fn model() -> impl Strategy<Value = Model> {
     (
         asymmetric_stribeck(),
         exponent(),
+        coefficient(),
         coefficient(),
         coefficient(),
     )
@@ -157,11 +161,17 @@ fn settles_on_the_stribeck_curve<const N: usize>(
     // The Stribeck level from the DESIGN formula, not from the crate's own `s(v)`: a curve that
     // mixed up the direction levels would otherwise agree with itself.
     let level = stribeck_level(params.stribeck(), *v);
-    let expected = level.copysign(*v) + params.sigma2() * v;
-    let scale = level + params.sigma2() * v.abs();
+    // Likewise the viscous coefficient of the direction, from its definition.
+    let sigma2 = if *v < 0.0 {
+        params.sigma2_neg()
+    } else {
+        params.sigma2()
+    };
+    let expected = level.copysign(*v) + sigma2 * v;
+    let scale = level + sigma2 * v.abs();
     prop_assert!(
         (force - expected).abs() <= 1e-9 * scale,
-        "after {} steps F = {}, expected s(v) + sigma2·v = {} (relative error {:e})",
+        "after {} steps F = {}, expected s(v) + σ2(v)·v = {} (relative error {:e})",
         steps,
         force,
         expected,

@@ -4,7 +4,7 @@
 //! Creating one allocates once (its size depends on the number of elements); stepping, swapping
 //! parameters and resetting never allocate.
 
-use gms_core::{Hysteresis, Level, Mode, Params, State};
+use gms_core::{Hysteresis, Level, Mode, Params, PositionForce, State};
 
 use crate::channels::Memory;
 use crate::error::Error;
@@ -30,10 +30,13 @@ pub struct Compensator {
 /// gms-core's compensator for one hysteresis type, behind a trait object.
 trait Axis: Send + Sync {
     fn step(&mut self, input: f64) -> Result<f64, gms_core::Error>;
+    fn step_trajectory(&mut self, v: f64, x: f64) -> Result<f64, gms_core::Error>;
     fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error>;
-    fn position(&self) -> f64;
+    fn position(&self) -> Option<f64>;
     fn level(&self) -> Level;
-    fn set_level(&mut self, level: &Level);
+    fn set_level(&mut self, level: &Level) -> Result<(), gms_core::Error>;
+    fn position_force(&self) -> PositionForce;
+    fn set_position_force(&mut self, force: &PositionForce) -> Result<(), gms_core::Error>;
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error>;
     fn reset(&mut self);
     fn output(&self) -> f64;
@@ -52,11 +55,16 @@ where
         gms_core::Compensator::step(self, input)
     }
 
+    #[inline]
+    fn step_trajectory(&mut self, v: f64, x: f64) -> Result<f64, gms_core::Error> {
+        gms_core::Compensator::step_trajectory(self, v, x)
+    }
+
     fn set_position(&mut self, x: f64) -> Result<(), gms_core::Error> {
         gms_core::Compensator::set_position(self, x)
     }
 
-    fn position(&self) -> f64 {
+    fn position(&self) -> Option<f64> {
         gms_core::Compensator::position(self)
     }
 
@@ -64,8 +72,16 @@ where
         *gms_core::Compensator::level(self)
     }
 
-    fn set_level(&mut self, level: &Level) {
-        gms_core::Compensator::set_level(self, *level);
+    fn set_level(&mut self, level: &Level) -> Result<(), gms_core::Error> {
+        gms_core::Compensator::set_level(self, *level)
+    }
+
+    fn position_force(&self) -> PositionForce {
+        *gms_core::Compensator::position_force(self)
+    }
+
+    fn set_position_force(&mut self, force: &PositionForce) -> Result<(), gms_core::Error> {
+        gms_core::Compensator::set_position_force(self, *force)
     }
 
     fn set_params(&mut self, params: &ParameterSet) -> Result<(), Error> {
@@ -116,13 +132,31 @@ where
     }
 }
 
-fn boxed<H>(params: Params<H>, dt: f64, mode: Mode, level: &Level) -> Result<Box<dyn Axis>, Error>
+fn boxed<H>(params: Params<H>, dt: f64, mode: Mode, terms: &Terms) -> Result<Box<dyn Axis>, Error>
 where
     H: InParameterSet<Memory: Memory> + Hysteresis + Send + Sync + 'static,
 {
+    let mut compensator = gms_core::Compensator::new(params, dt, mode)?;
+    if let Some(x) = terms.start {
+        compensator = compensator.with_start_position(x)?;
+    }
     Ok(Box::new(
-        gms_core::Compensator::new(params, dt, mode)?.with_level(*level),
+        compensator
+            .with_level(terms.level)?
+            .with_position_force(terms.position_force)?,
     ))
+}
+
+/// What a compensator is built with beside its parameters: the position-dependent terms and the
+/// axis's start position (required in feedforward mode when a term is given).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Terms {
+    /// The start position \[m or rad\]: where feedforward mode places the terms from.
+    pub start: Option<f64>,
+    /// The position-dependent level ([`Level::none`] for none).
+    pub level: Level,
+    /// The position force ([`PositionForce::none`] for none).
+    pub position_force: PositionForce,
 }
 
 impl Compensator {
@@ -131,27 +165,28 @@ impl Compensator {
     /// # Errors
     /// `dt` not finite and > 0.
     pub fn new(params: &ParameterSet, dt: f64, mode: Mode) -> Result<Self, Error> {
-        Self::with_level(params, dt, mode, &Level::none())
+        Self::with_terms(params, dt, mode, &Terms::default())
     }
 
-    /// A compensator at rest with a position-dependent level (docs/model.md#position-dependent-level):
-    /// its output is factor(x)·(F − σ2·v) + σ2·v. In feedforward mode give the start position
-    /// with [`Compensator::set_position`].
+    /// A compensator at rest with a position-dependent level and a position force
+    /// (docs/model.md#position-dependent-level): its output is
+    /// factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x), placed from `terms.start` in feedforward mode.
     ///
     /// # Errors
-    /// `dt` not finite and > 0.
-    pub fn with_level(
+    /// `dt` not finite and > 0, a start position that is not finite, or (feedforward mode) a
+    /// level or a position force without a start position (`Missing` naming `x`).
+    pub fn with_terms(
         params: &ParameterSet,
         dt: f64,
         mode: Mode,
-        level: &Level,
+        terms: &Terms,
     ) -> Result<Self, Error> {
         Ok(Self {
-            axis: with_params!(*params, params => boxed(params, dt, mode, level)?),
+            axis: with_params!(*params, params => boxed(params, dt, mode, terms)?),
         })
     }
 
-    /// Sets the position from which feedforward mode integrates the desired velocity (observer
+    /// Sets the position of the axis, from which feedforward mode places the terms (observer
     /// mode takes the position from its input).
     ///
     /// # Errors
@@ -160,19 +195,47 @@ impl Compensator {
         self.axis.set_position(x)
     }
 
-    /// The feedforward position: the start position plus the desired velocities integrated since.
-    pub fn position(&self) -> f64 {
+    /// The feedforward position: the start position, then the desired positions stepped or the
+    /// desired velocities integrated since; `None` until a start position is given.
+    pub fn position(&self) -> Option<f64> {
         self.axis.position()
     }
 
     /// Replaces the position-dependent level between two samples; the model state carries over.
-    pub fn set_level(&mut self, level: &Level) {
-        self.axis.set_level(level);
+    ///
+    /// # Errors
+    /// `Missing` naming `x`: feedforward mode without a start position; nothing changes.
+    pub fn set_level(&mut self, level: &Level) -> Result<(), gms_core::Error> {
+        self.axis.set_level(level)
     }
 
     /// The position-dependent level ([`Level::none`] when none was given).
     pub fn level(&self) -> Level {
         self.axis.level()
+    }
+
+    /// Replaces the position force between two samples, as [`Compensator::set_level`].
+    ///
+    /// # Errors
+    /// `Missing` naming `x`: feedforward mode without a start position; nothing changes.
+    pub fn set_position_force(&mut self, force: &PositionForce) -> Result<(), gms_core::Error> {
+        self.axis.set_position_force(force)
+    }
+
+    /// The position force ([`PositionForce::none`] when none was given).
+    pub fn position_force(&self) -> PositionForce {
+        self.axis.position_force()
+    }
+
+    /// The friction force for one sample of a planned trajectory: the desired velocity `v`
+    /// drives the model, the desired position `x` places the terms (gms-core's
+    /// `Compensator::step_trajectory`).
+    ///
+    /// # Errors
+    /// A non-finite `v` or `x`, or a non-finite force; the state and output are unchanged.
+    #[inline]
+    pub fn step_trajectory(&mut self, v: f64, x: f64) -> Result<f64, gms_core::Error> {
+        self.axis.step_trajectory(v, x)
     }
 
     /// The friction force to add to the command for this sample; `input` is the desired

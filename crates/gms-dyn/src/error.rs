@@ -437,6 +437,21 @@ fn core_details(error: gms_core::Error) -> Details {
             got,
         } => details.key(field.key()).lengths(expected, got),
         Core::LengthMismatch { expected, got } => details.lengths(expected, got),
+        Core::TooManyRipples { .. }
+        | Core::RipplePeriod { .. }
+        | Core::HarmonicLengths { .. }
+        | Core::TooManyHarmonics { .. }
+        | Core::RippleCoefficient { .. }
+        | Core::LevelTooDeep { .. }
+        | Core::PhaseUnresolved { .. } => series_details(details, error),
+        Core::Missing { field } => details.key(field.key()),
+    }
+}
+
+/// The data of a refused level or position force (`details` holds the kind).
+fn series_details(details: Details, error: gms_core::Error) -> Details {
+    use gms_core::Error as Core;
+    match error {
         Core::TooManyRipples { count } => details
             .key("ripples")
             .value(Number::Count(count))
@@ -460,6 +475,24 @@ fn core_details(error: gms_core::Error) -> Details {
             .ripple(ripple, Some(field.key()), Some(index))
             .real(value),
         Core::LevelTooDeep { sum } => details.real(sum).bound(Number::Real(1.0)),
+        Core::PhaseUnresolved {
+            field,
+            index,
+            value,
+            extent,
+        } => match field {
+            Field::period => details
+                .ripple(index, Some("period"), None)
+                .real(value)
+                .bound(Number::Real(gms_core::PositionSeries::finest(extent))),
+            // The middle is refused for the half stroke it leaves unresolved: no bound of its own.
+            Field::middle => details.key(field.key()).real(value),
+            _ => details
+                .key(field.key())
+                .real(value)
+                .bound(Number::Real(gms_core::PositionSeries::finest(extent))),
+        },
+        _ => details,
     }
 }
 
@@ -486,7 +519,8 @@ fn core_class(error: &gms_core::Error) -> ErrorClass {
         | Core::Negative { field, .. }
         | Core::NotFiniteValue { field, .. }
         | Core::NotInUnitInterval { field, .. }
-        | Core::NotFinite { field, .. } => {
+        | Core::NotFinite { field, .. }
+        | Core::Missing { field } => {
             if is_input(field) {
                 ErrorClass::Input
             } else {
@@ -507,7 +541,8 @@ fn core_class(error: &gms_core::Error) -> ErrorClass {
         | Core::HarmonicLengths { .. }
         | Core::TooManyHarmonics { .. }
         | Core::RippleCoefficient { .. }
-        | Core::LevelTooDeep { .. } => ErrorClass::Parameter,
+        | Core::LevelTooDeep { .. }
+        | Core::PhaseUnresolved { .. } => ErrorClass::Parameter,
         Core::VelocityNotFinite { .. }
         | Core::Overflow { .. }
         | Core::InputsOverflow { .. }

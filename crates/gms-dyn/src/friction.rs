@@ -1,13 +1,14 @@
 //! Channels of the friction model that share one validated parameter set, whatever its number
 //! of elements: stepped one at a time, or run over blocks in parallel, all or nothing.
 
-// The hysteresis types a bank holds: with the `batch` feature those that gms-batch steps in
-// lanes (every one gms-core has), without it any of gms-core's.
+// The hysteresis types a bank holds and what its rows are: with the `batch` feature those that
+// gms-batch steps in lanes (every one gms-core has) and gms-batch's `Signal`, without it any of
+// gms-core's and this crate's own `Signal` of the same shape.
 #[cfg(feature = "batch")]
-use gms_batch::BatchHysteresis as BankHysteresis;
+use gms_batch::{BatchHysteresis as BankHysteresis, Signal};
 #[cfg(not(feature = "batch"))]
 use gms_core::Hysteresis as BankHysteresis;
-use gms_core::{Hysteresis, Level, Params, Scheme, State};
+use gms_core::{Hysteresis, Level, Params, PositionForce, Scheme, State};
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
@@ -41,8 +42,7 @@ trait FrictionChannels: Send + Sync {
         &mut self,
         input: &[f64],
         dt: f64,
-        kind: Input,
-        level: &Level,
+        signal: Signal<'_>,
         out: &mut [f64],
     ) -> Result<(), Error>;
     fn trace_position(
@@ -106,20 +106,26 @@ where
         &mut self,
         input: &[f64],
         dt: f64,
-        kind: Input,
-        level: &Level,
+        signal: Signal<'_>,
         out: &mut [f64],
     ) -> Result<(), Error> {
         let samples = samples_per_channel(input.len(), self.states.len())?;
         check_output(input.len(), out.len())?;
+        if let Signal::VelocityAt { x, .. } = signal {
+            if x.len() != input.len() {
+                return Err(gms_core::Error::InputLengthMismatch {
+                    field: gms_core::Field::x,
+                    expected: input.len(),
+                    got: x.len(),
+                }
+                .into());
+            }
+        }
         let (params, scheme) = (&self.params, self.scheme);
         if samples == 0 {
             // Nothing to run: dt is checked on a scratch state, no channel is copied or touched.
             return Ok(params.simulate(&mut params.relaxed_state(), &[], dt, scheme, &mut [])?);
         }
-        let run = |states: &mut [State<H::Memory>], input: &[f64], out: &mut [f64]| {
-            run_rows(params, states, input, samples, dt, scheme, kind, level, out)
-        };
         // Only the first failing channel is kept: a result per channel would be one more
         // allocation the size of the bank, and an infallible one.
         all_or_nothing(&mut self.states, |states| {
@@ -132,13 +138,15 @@ where
                     .zip(input.par_chunks(block).zip(out.par_chunks_mut(block)))
                     .enumerate()
                     .filter_map(|(group, (states, (input, out)))| {
-                        run(states, input, out)
+                        let start = group * block;
+                        let signal = signal.rows(start..start + input.len());
+                        run_rows(params, states, input, samples, dt, scheme, signal, out)
                             .map(|(channel, error)| (group * GROUP + channel, error))
                     })
                     .min_by_key(|(channel, _)| *channel);
             }
             // One channel needs no thread pool; without the `parallel` feature none is used.
-            run(states, input, out)
+            run_rows(params, states, input, samples, dt, scheme, signal, out)
         })
     }
 
@@ -210,6 +218,44 @@ where
     }
 }
 
+/// What the rows of a run are, and the position-dependent terms on their output
+/// (docs/model.md#position-dependent-level): gms-batch's `Signal`, for the build without it.
+#[cfg(not(feature = "batch"))]
+#[derive(Clone, Copy, Debug)]
+enum Signal<'a> {
+    /// Velocities v: `Params::simulate`.
+    Velocity,
+    /// Velocities v with the position of every sample, `x` (the input's shape), which places
+    /// the level and the position force: `Params::simulate_level`.
+    VelocityAt {
+        x: &'a [f64],
+        level: &'a Level,
+        force: &'a PositionForce,
+    },
+    /// Positions x with a level and a position force: `Params::simulate_position`, or
+    /// `Params::simulate_position_level` when either is given.
+    Position {
+        level: &'a Level,
+        force: &'a PositionForce,
+    },
+}
+
+#[cfg(not(feature = "batch"))]
+impl Signal<'_> {
+    /// The signal of the channels whose samples are `rows` of the input (the positions of
+    /// [`Signal::VelocityAt`] cut like the input), for running them apart.
+    fn rows(self, rows: core::ops::Range<usize>) -> Self {
+        match self {
+            Signal::VelocityAt { x, level, force } => Signal::VelocityAt {
+                x: &x[rows],
+                level,
+                force,
+            },
+            other => other,
+        }
+    }
+}
+
 /// The channels the threads take at a time: a group of gms-batch's lanes, or one channel.
 #[cfg(all(feature = "parallel", feature = "batch"))]
 const GROUP: usize = gms_batch::LANES;
@@ -220,9 +266,10 @@ const GROUP: usize = 1;
 /// `out`; the first failing channel (lowest index) and gms-core's error for it, whose state is
 /// as before (the others may have advanced: the caller restores them).
 ///
-/// gms-batch steps the channels several at a time (LANES of them in SIMD lanes), and hands any
-/// group with a rejected sample to gms-core's block calls, which check dt and scan each row for
-/// finiteness before they step: the one check, and the same errors.
+/// gms-batch steps the channels several at a time (LANES of them in SIMD lanes), the level and
+/// the position force included, and hands any group with a rejected sample to gms-core's block
+/// calls, which check dt and scan each row for finiteness before they step: the one check, and
+/// the same errors.
 #[cfg(feature = "batch")]
 #[allow(clippy::too_many_arguments)] // gms-core's block call, plus the shape
 fn run_rows<H: BankHysteresis>(
@@ -232,14 +279,9 @@ fn run_rows<H: BankHysteresis>(
     samples: usize,
     dt: f64,
     scheme: Scheme,
-    kind: Input,
-    level: &Level,
+    signal: Signal<'_>,
     out: &mut [f64],
 ) -> Option<(usize, gms_core::Error)> {
-    let signal = match kind {
-        Input::Velocity => gms_batch::Signal::Velocity,
-        Input::Position => gms_batch::Signal::Position(level),
-    };
     gms_batch::run(params, states, input, samples, dt, scheme, signal, out)
 }
 
@@ -256,8 +298,7 @@ fn run_rows<H: BankHysteresis>(
     samples: usize,
     dt: f64,
     scheme: Scheme,
-    kind: Input,
-    level: &Level,
+    signal: Signal<'_>,
     out: &mut [f64],
 ) -> Option<(usize, gms_core::Error)> {
     states
@@ -265,13 +306,16 @@ fn run_rows<H: BankHysteresis>(
         .zip(input.chunks(samples).zip(out.chunks_mut(samples)))
         .enumerate()
         .find_map(|(channel, (state, (input, out)))| {
-            let result = match kind {
-                Input::Velocity => params.simulate(state, input, dt, scheme, out),
-                Input::Position if level.is_flat() => {
+            let result = match signal.rows(channel * samples..(channel + 1) * samples) {
+                Signal::Velocity => params.simulate(state, input, dt, scheme, out),
+                Signal::VelocityAt { x, level, force } => {
+                    params.simulate_level(state, input, x, dt, scheme, level, force, out)
+                }
+                Signal::Position { level, force } if level.is_flat() && force.is_none() => {
                     params.simulate_position(state, input, dt, scheme, out)
                 }
-                Input::Position => {
-                    params.simulate_position_level(state, input, dt, scheme, level, out)
+                Signal::Position { level, force } => {
+                    params.simulate_position_level(state, input, dt, scheme, level, force, out)
                 }
             };
             result.err().map(|error| (channel, error))
@@ -341,23 +385,62 @@ impl FrictionBank {
         kind: Input,
         out: &mut [f64],
     ) -> Result<(), Error> {
-        self.channels.run(input, dt, kind, &Level::none(), out)
+        let signal = match kind {
+            Input::Velocity => Signal::Velocity,
+            Input::Position => Signal::Position {
+                level: &Level::none(),
+                force: &PositionForce::none(),
+            },
+        };
+        self.channels.run(input, dt, signal, out)
     }
 
-    /// [`FrictionBank::run`] on positions `x` with a position-dependent level
-    /// (docs/model.md#position-dependent-level): each force is factor(x)·(F − σ2·v) + σ2·v. The
-    /// states evolve as without the level; a flat level gives the plain forces bit for bit.
+    /// [`FrictionBank::run`] on positions `x` with a position-dependent level and a position
+    /// force (docs/model.md#position-dependent-level): each force is
+    /// factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x). The states evolve as without them; none of
+    /// either gives the plain forces bit for bit.
     ///
     /// # Errors
-    /// As [`FrictionBank::run`]; a force that the level makes non-finite is a divergence.
+    /// As [`FrictionBank::run`]; a force that the terms make non-finite is a divergence.
     pub fn run_position_level(
         &mut self,
         x: &[f64],
         dt: f64,
         level: &Level,
+        position_force: &PositionForce,
         out: &mut [f64],
     ) -> Result<(), Error> {
-        self.channels.run(x, dt, Input::Position, level, out)
+        let signal = Signal::Position {
+            level,
+            force: position_force,
+        };
+        self.channels.run(x, dt, signal, out)
+    }
+
+    /// [`FrictionBank::run`] on velocities `v` with the position of every sample, `x` (the
+    /// same shape), which places the level and the position force: gms-core's
+    /// `Params::simulate_level` on every channel, as a log with a measured velocity column
+    /// drives the model. The states evolve as on `v` alone.
+    ///
+    /// # Errors
+    /// As [`FrictionBank::run`], and `gms_core::Error::InputLengthMismatch` naming `x` when it
+    /// is not the shape of `v`; a non-finite position is refused naming `x`, the sample and
+    /// the channel.
+    pub fn run_level(
+        &mut self,
+        v: &[f64],
+        x: &[f64],
+        dt: f64,
+        level: &Level,
+        position_force: &PositionForce,
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        let signal = Signal::VelocityAt {
+            x,
+            level,
+            force: position_force,
+        };
+        self.channels.run(v, dt, signal, out)
     }
 
     /// Runs `channel` over positions `x`, writing the forces into `out` and the deflection z

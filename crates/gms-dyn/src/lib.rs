@@ -9,10 +9,12 @@
 //! - [`FrictionBank`] and [`MassBank`]: channels of the friction model, or of a mass on it,
 //!   that share one parameter set; block runs go over the channels in parallel, all or nothing.
 //! - [`Compensator`]: one axis of friction compensation, optionally with a position-dependent
-//!   [`Level`] (re-exported from gms-core, which validates it).
+//!   [`Level`] and a [`PositionForce`] (re-exported from gms-core, which validates them).
 //! - [`OnlineIdentifier`] and [`slip_responses`]: identification with N chosen at run time.
 //! - [`Error`]: gms-core's rules plus the refusals of this layer, each displayed as the whole
 //!   message the user reads, with its data ([`Error::details`]: kind, field, value) beside it.
+//! - [`with_params!`]: code generic over the hysteresis, run on whichever gms-core parameters a
+//!   [`ParameterSet`] holds (the crates built on this one, gms-fit, dispatch through it).
 //!
 //! The bindings on top only convert arguments and map [`Error`]s to exception classes or
 //! status codes.
@@ -29,15 +31,19 @@ mod online;
 mod params;
 mod slip;
 
-pub use compensator::{Compensator, CompensatorState};
+pub use compensator::{Compensator, CompensatorState, Terms};
 pub use error::{Details, Error, ErrorClass, Location, Number};
 pub use friction::{FrictionBank, Input};
-pub use gms_core::{Level, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
+pub use gms_core::{Level, PositionForce, PositionSeries, RippleTerms, MAX_HARMONICS, MAX_RIPPLES};
 pub use kind::HysteresisKind;
 pub use mass::{MassBank, MassStates, Mechanics};
 pub use online::OnlineIdentifier;
 pub use params::{ParameterSet, RawElements, RawParams};
 pub use slip::slip_responses;
+
+/// The `seq!` macro that [`with_params!`] expands to, reachable from the crates that call it.
+#[doc(hidden)]
+pub use seq_macro::seq as __seq;
 
 /// The largest number of Maxwell-slip elements a run-time parameter set may have.
 ///

@@ -18,9 +18,14 @@ const _: () = assert!(MAX_ELEMENTS == 32);
 
 /// Runs `$body` with `$params` bound to the gms-core parameters inside the [`ParameterSet`]
 /// `$set`, whatever its variant (each arm is compiled for its own hysteresis type).
+///
+/// Exported so that a crate built on this one (gms-fit) dispatches over the same table rather
+/// than spelling out a second one: `gms_dyn::with_params!(set, params => run(params))`, with
+/// `run` generic over the hysteresis.
+#[macro_export]
 macro_rules! with_params {
     ($set:expr, $params:ident => $body:expr) => {
-        seq_macro::seq!(N in 1..=32 {
+        $crate::__seq!(N in 1..=32 {
             match $set {
                 $crate::ParameterSet::Linear($params) => $body,
                 #( $crate::ParameterSet::Maxwell~N($params) => $body, )*
@@ -28,7 +33,7 @@ macro_rules! with_params {
         })
     };
 }
-pub(crate) use with_params;
+pub(crate) use crate::with_params;
 
 /// Evaluates `$body` with the const `$n` equal to `$count` when it is in 1..=[`MAX_ELEMENTS`],
 /// and `$otherwise` when not.
@@ -56,7 +61,8 @@ pub struct RawElements<'a> {
 /// A parameter set as plain values, exactly as a caller gives it, not yet validated.
 ///
 /// The direction-dependent levels are resolved by the caller (Python's `None` and C's 0 both
-/// mean "same as `Fc`/`Fs`"). Exactly one of `sigma0` and `elements` should be given.
+/// mean "same as `Fc`/`Fs`"); `sigma2_neg` is `None` when not given ("same as `sigma2`").
+/// Exactly one of `sigma0` and `elements` should be given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RawParams<'a> {
     /// Coulomb level.
@@ -77,6 +83,8 @@ pub struct RawParams<'a> {
     pub fc_neg: f64,
     /// Static level for negative velocity.
     pub fs_neg: f64,
+    /// Viscous coefficient for negative velocity; `None`: `sigma2`.
+    pub sigma2_neg: Option<f64>,
     /// Stiffness of linear hysteresis, if that is the kind given.
     pub sigma0: Option<f64>,
     /// Maxwell-slip elements, if that is the kind given (possibly empty).
@@ -143,7 +151,11 @@ impl RawParams<'_> {
             self.vs,
             self.delta,
         )?;
-        Params::new(stribeck, self.n, self.sigma1, self.sigma2, hysteresis)
+        let params = Params::new(stribeck, self.n, self.sigma1, self.sigma2, hysteresis)?;
+        match self.sigma2_neg {
+            Some(sigma2_neg) => params.with_sigma2_neg(sigma2_neg),
+            None => Ok(params),
+        }
     }
 }
 
@@ -239,6 +251,7 @@ mod tests {
             sigma2: 0.4,
             fc_neg: 1.0,
             fs_neg: 1.5,
+            sigma2_neg: None,
             sigma0: None,
             elements: Some(RawElements { w, delta }),
         }

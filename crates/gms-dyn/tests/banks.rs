@@ -19,6 +19,7 @@ fn set() -> gms_dyn::ParameterSet {
         sigma2: 0.4,
         fc_neg: 1.0,
         fs_neg: 1.5,
+        sigma2_neg: None,
         sigma0: None,
         elements: Some(RawElements {
             w: &w,

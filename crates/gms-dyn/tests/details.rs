@@ -13,6 +13,7 @@ fn raw<'a>(w: &'a [f64], delta: &'a [f64]) -> RawParams<'a> {
         n: 2.0,
         sigma1: 0.0,
         sigma2: 0.0,
+        sigma2_neg: None,
         fc_neg: 1.0,
         fs_neg: 1.5,
         sigma0: None,
@@ -133,4 +134,72 @@ fn the_kinds_are_gms_cores_and_this_layers_without_the_wrappers() {
     for wrapper in ["core", "channel", "state"] {
         assert!(!kinds.contains(&wrapper), "{wrapper}");
     }
+}
+
+/// A period or half stroke whose phase cannot be resolved gives the finest one resolved as its
+/// bound; a middle too far from 0 is named without one (the half stroke is what falls short).
+#[test]
+fn an_unresolved_phase_names_the_term_and_the_finest_resolved() {
+    let fine = gms_dyn::RippleTerms {
+        period: 1e-12,
+        cos: &[0.1],
+        sin: &[0.0],
+    };
+    let refused = gms_dyn::PositionForce::new(0.0, 1.0, [0.0; 2], &[fine, fine]).unwrap_err();
+    let details = Error::from(refused).details();
+    assert_eq!(details.kind, "phase_unresolved");
+    assert_eq!(
+        details.field.map(|field| field.to_string()).as_deref(),
+        Some("ripples[0].period")
+    );
+    assert_eq!(details.value, Some(Number::Real(1e-12)));
+    // 2^20 ulps of the extent max(|0| + 1, 1) = 1.
+    let finest = 1_048_576.0 * f64::EPSILON;
+    assert_eq!(details.bound, Some(Number::Real(finest)));
+    assert_eq!(details.index, Some(0));
+
+    let refused = gms_dyn::Level::new(0.0, 1e-300, [0.0; 2], &[]).unwrap_err();
+    let details = Error::from(refused).details();
+    assert_eq!(
+        (details.kind, details.field, details.value, details.bound),
+        (
+            "phase_unresolved",
+            Some(Location::Key("half_stroke")),
+            Some(Number::Real(1e-300)),
+            Some(Number::Real(finest))
+        )
+    );
+
+    let refused = gms_dyn::Level::new(1e12, 1e-6, [0.0; 2], &[]).unwrap_err();
+    let details = Error::from(refused).details();
+    assert_eq!(
+        (details.kind, details.field, details.value, details.bound),
+        (
+            "phase_unresolved",
+            Some(Location::Key("middle")),
+            Some(Number::Real(1e12)),
+            None
+        )
+    );
+}
+
+#[test]
+fn a_missing_start_position_names_x() {
+    let set = raw(&[1.0; 4], &[1e-6, 2e-6, 3e-6, 4e-6])
+        .validate()
+        .expect("valid");
+    let level = gms_dyn::Level::new(0.0, 1.0, [0.1, 0.0], &[]).expect("a level");
+    let terms = gms_dyn::Terms {
+        level,
+        ..gms_dyn::Terms::default()
+    };
+    let refused = gms_dyn::Compensator::with_terms(&set, 1e-3, gms_core::Mode::Feedforward, &terms)
+        .map(|_| ())
+        .unwrap_err();
+    let details = refused.details();
+    assert_eq!(
+        (details.kind, details.field, details.value),
+        ("missing", Some(Location::Key("x")), None)
+    );
+    assert_eq!(refused.class(), gms_dyn::ErrorClass::Input);
 }

@@ -1,10 +1,12 @@
 /* libFuzzer target for the C ABI of leuven-rt (include/leuven_rt.h).
  *
- * The whole input is first handed to create_from_json as the text of a parameter or model file
- * (in both modes). It is then decoded into a sequence of calls on up to four compensators: create (with
- * parameter structs built from a physical base and mutated with random doubles, random W and
- * Delta arrays of exactly `elements` heap doubles, or null pointers), step with random doubles
- * (NaN, inf, huge, tiny), set_params, reset, output, destroy, and calls with null arguments.
+ * The whole input is first handed to create_from_json and create_from_json_at as the text of a
+ * parameter or model file (in both modes). It is then decoded into a sequence of calls on up to
+ * four compensators: create (with parameter structs built from a physical base and mutated with
+ * random doubles, `sigma2_neg` included, random W and Delta arrays of exactly `elements` heap
+ * doubles, or null pointers), step and step_trajectory with random doubles (NaN, inf, huge,
+ * tiny), set_params, set_level, set_position_force, set_position, reset, output, destroy, and
+ * calls with null arguments.
  * Built with -fsanitize=fuzzer,address,undefined (scripts/fuzz_c.sh); the Rust library is built
  * normally, so AddressSanitizer sees its heap through malloc/free and catches out-of-bounds
  * reads of the arrays handed across the boundary.
@@ -12,7 +14,8 @@
  * Invariants checked (abort on violation):
  * - a call that does not return LEUVEN_RT_OK changes nothing: no handle is written by a refused
  *   create, and the compensator's output is the same before and after a refused step or
- *   set_params;
+ *   set_params (set_level and set_position_force never change it);
+ * - a refusal for a missing start position names `x`;
  * - an OK step writes a finite force, and output() then reads that force back;
  * - a refused step with a valid `force` writes the last good force (0 on a null handle);
  * - every status has a non-null message.
@@ -122,7 +125,7 @@ static void parameters(reader *r, leuven_rt_params *p, double **w, double **delt
     }
     uint8_t mutations = byte(r) % 6;
     for (uint8_t m = 0; m < mutations; m++) {
-        uint8_t field = byte(r) % 14;
+        uint8_t field = byte(r) % 15;
         double value = number(r);
         switch (field) {
         case 0: p->Fc = value; break;
@@ -135,6 +138,7 @@ static void parameters(reader *r, leuven_rt_params *p, double **w, double **delt
         case 7: p->sigma1 = value; break;
         case 8: p->sigma2 = value; break;
         case 9: p->sigma0 = value; break;
+        case 10: p->sigma2_neg = value; break;
         default:
             if (*w != NULL && p->elements > 0) {
                 size_t i = byte(r) % p->elements;
@@ -144,16 +148,24 @@ static void parameters(reader *r, leuven_rt_params *p, double **w, double **delt
     }
 }
 
-/* The input as the text of a parameter file or a versioned model file. */
-static void from_json(const uint8_t *data, size_t size, int32_t mode) {
+/* The input as the text of a parameter file or a versioned model file, created at a start
+ * position or without one. */
+static void from_json(const uint8_t *data, size_t size, int32_t mode, int at) {
     leuven_rt_compensator *sentinel = (leuven_rt_compensator *)&mode; /* never a handle */
     leuven_rt_compensator *made = sentinel;
     leuven_rt_error error = {NULL, 12345};
     leuven_rt_status status =
-        leuven_rt_compensator_create_from_json((const char *)data, size, 1e-3, mode, &made, &error);
+        at ? leuven_rt_compensator_create_from_json_at((const char *)data, size, 1e-3, mode, 2e-3,
+                                                       &made, &error)
+           : leuven_rt_compensator_create_from_json((const char *)data, size, 1e-3, mode, &made,
+                                                    &error);
     check(error.field != NULL, "create_from_json writes the error");
     if (status != LEUVEN_RT_OK) {
         check(made == sentinel, "a refused create_from_json writes no handle");
+        if (status == LEUVEN_RT_NO_START_POSITION) {
+            check(!at && mode == LEUVEN_RT_MODE_FEEDFORWARD && strcmp(error.field, "x") == 0,
+                  "only feedforward without a start position misses it, naming x");
+        }
         return;
     }
     check(made != NULL && made != sentinel, "create_from_json OK gives a handle");
@@ -164,13 +176,18 @@ static void from_json(const uint8_t *data, size_t size, int32_t mode) {
         if (leuven_rt_compensator_step(made, 1e-3 * sin(0.5 * k), &force) == LEUVEN_RT_OK) {
             check(isfinite(force), "an OK step from a file gives a finite force");
         }
+        if (leuven_rt_compensator_step_trajectory(made, 1e-3 * cos(0.5 * k), 1e-3 * k, &force) ==
+            LEUVEN_RT_OK) {
+            check(isfinite(force), "an OK trajectory step from a file gives a finite force");
+        }
     }
     leuven_rt_compensator_destroy(made);
 }
 
-/* A level from the input: a valid base mutated by random doubles and counts (the arrays are
- * heap blocks of exactly the counts given, so that ASan catches reads past them). */
-static void set_level(reader *r, leuven_rt_compensator *c) {
+/* A level or a position force from the input: a valid base mutated by random doubles and counts
+ * (the arrays are heap blocks of exactly the counts given, so that ASan catches reads past
+ * them). */
+static void set_level(reader *r, leuven_rt_compensator *c, int force) {
     double *amplitudes[4] = {NULL, NULL, NULL, NULL};
     leuven_rt_ripple ripples[2];
     for (int i = 0; i < 2; i++) {
@@ -189,19 +206,23 @@ static void set_level(reader *r, leuven_rt_compensator *c) {
                              ripples, (size_t)(byte(r) % 3)};
     leuven_rt_error error = {NULL, 0};
     double before = c ? output_of(c) : 0.0;
-    leuven_rt_status status = leuven_rt_compensator_set_level(c, byte(r) < 250 ? &level : NULL, &error);
+    const leuven_rt_level *given = byte(r) < 250 ? &level : NULL;
+    leuven_rt_status status = force ? leuven_rt_compensator_set_position_force(c, given, &error)
+                                    : leuven_rt_compensator_set_level(c, given, &error);
     if (c == NULL) {
         check(status == LEUVEN_RT_INVALID_POINTER, "a null handle is refused");
     } else {
         check(output_of(c) == before, "set_level leaves the output");
         if (status == LEUVEN_RT_INVALID_PARAMETER) check(error.field[0] != 0, "a level error names a field");
+        if (status == LEUVEN_RT_NO_START_POSITION) check(strcmp(error.field, "x") == 0, "names x");
     }
     for (int i = 0; i < 4; i++) free(amplitudes[i]);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    from_json(data, size, 0);
-    from_json(data, size, 1);
+    from_json(data, size, 0, 0);
+    from_json(data, size, 1, 0);
+    from_json(data, size, 0, 1);
     reader r = {data, size};
     leuven_rt_compensator *slots[SLOTS] = {NULL};
     for (int call = 0; call < MAX_CALLS && r.size > 0; call++) {
@@ -237,10 +258,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             leuven_rt_compensator_destroy(*slot);
             *slot = NULL;
             break;
-        case 2: case 3: { /* step */
+        case 2: case 3: { /* step, or a trajectory step */
             double input = number(&r);
             double force = 99.0;
-            leuven_rt_status status = leuven_rt_compensator_step(*slot, input, &force);
+            leuven_rt_status status =
+                op % 9 == 2 ? leuven_rt_compensator_step(*slot, input, &force)
+                            : leuven_rt_compensator_step_trajectory(*slot, input, number(&r), &force);
             if (*slot == NULL) {
                 check(status == LEUVEN_RT_INVALID_POINTER, "a null handle is refused");
                 check(force == 0.0, "a null handle writes 0");
@@ -290,8 +313,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             break;
         case 7: /* messages, levels and positions */
             check(leuven_rt_status_message((int32_t)raw_bits(&r)) != NULL, "a message");
-            if (byte(&r) % 2) {
-                set_level(&r, *slot);
+            uint8_t which = byte(&r) % 3;
+            if (which < 2) {
+                set_level(&r, *slot, which);
             } else {
                 double x = number(&r);
                 leuven_rt_status status = leuven_rt_compensator_set_position(*slot, x);

@@ -61,10 +61,17 @@ enum leuven_rt_status
   // The step produced a non-finite force (inputs far outside SI magnitudes). The output
   // holds the last good force.
   LEUVEN_RT_STEP_FAILED = 7,
-  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
-  // object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
-  // has an unknown, missing or mistyped key; the error message names the key or the cause.
+  // A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not JSON,
+  // has a `format` or `version` this library does not read, or has a key given twice, an
+  // unknown or missing key, or a value of the wrong type; the error message names the key
+  // path or the cause (docs/data-and-reports.md#model-file).
   LEUVEN_RT_INVALID_FILE = 8,
+  // A feedforward compensator was given a level or a position force (by a call, or in a
+  // model file) without the axis's start position: they would be placed from x = 0, out of
+  // phase with the machine. Call `leuven_rt_compensator_set_position` first, or create from a
+  // model file with `leuven_rt_compensator_create_from_json_at` / `_from_file_at`. The error
+  // detail names `x`.
+  LEUVEN_RT_NO_START_POSITION = 9,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -86,12 +93,15 @@ typedef struct leuven_rt_compensator leuven_rt_compensator;
 //
 // Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 // and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
-// `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+// `Delta` ignored. `Fc_neg`, `Fs_neg` and `sigma2_neg` of 0 mean "same as `Fc`, `Fs` and
+// `sigma2`" (so a struct written before `sigma2_neg` existed, zero-filled, keeps its meaning; a
+// viscous coefficient of exactly 0 for v < 0 beside a non-zero `sigma2` is given in a parameter
+// file instead).
 //
 // Rules (each broken one gives `LEUVEN_RT_INVALID_PARAMETER` and its member's name in
 // `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
 // `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
-// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
+// `sigma1`, `sigma2` (and `sigma2_neg` when used) finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
 // finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`);
 // `sum(W)` finite (field `W`, the index of the largest); the sum of the stiffnesses
 // `W[i] / Delta[i]` finite (field `Delta`, index 0); each `Delta[i]` at least 2^-26 times the
@@ -118,8 +128,10 @@ typedef struct leuven_rt_params {
   double n;
   // Micro-viscous coefficient [N·s/m].
   double sigma1;
-  // Viscous coefficient [N·s/m].
+  // Viscous coefficient [N·s/m] (for v >= 0 when `sigma2_neg` is given).
   double sigma2;
+  // Viscous coefficient for v < 0 [N·s/m]; 0: `sigma2`.
+  double sigma2_neg;
   // Stiffness of linear hysteresis [N/m]; 0 with Maxwell-slip elements.
   double sigma0;
   // Saturation forces of the elements [N], `elements` values.
@@ -150,9 +162,10 @@ typedef struct leuven_rt_error {
 // index k − 1).
 //
 // Rules (`LEUVEN_RT_INVALID_PARAMETER`, with the member's name in `leuven_rt_error.field` and
-// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and not subnormal;
-// `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every amplitude finite. `cos` and `sin` may
-// be null when `harmonics` is 0.
+// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and at least 2^20 ulps
+// of max(|middle| + `half_stroke`, 1), the largest position the level covers (a finer period's
+// phase cannot be resolved there); `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every
+// amplitude finite. `cos` and `sin` may be null when `harmonics` is 0.
 typedef struct leuven_rt_ripple {
   // The period [m or rad].
   double period;
@@ -171,10 +184,14 @@ typedef struct leuven_rt_ripple {
 //
 // Rules (`LEUVEN_RT_INVALID_PARAMETER`, the member's name in `leuven_rt_error.field`):
 // `middle` and `trend` finite (`index` says which `trend` entry); `half_stroke` finite, > 0
-// and not subnormal; `ripple_count` at most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in
-// `leuven_rt_ripple`; and |t1| + |t2| + the sum of every |amplitude| below 1, so that the factor
-// is positive everywhere (field "level"). `ripples` may be null when `ripple_count` is 0. A
-// level of zeros with no ripples is the flat level: the plain model's output, bit for bit.
+// and at least 2^20 ulps of max(|middle| + `half_stroke`, 1) (field `middle` when the middle is
+// so far from 0 that a half stroke resolved about 0 is not resolved there); `ripple_count` at
+// most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in `leuven_rt_ripple`; and |t1| + |t2| + the sum
+// of every |amplitude| below 1, so that the factor is positive everywhere (field "level").
+// `ripples` may be null when `ripple_count` is 0. A level of zeros with no ripples is the flat
+// level: the plain model's output, bit for bit.
+//
+// The same struct describes a position force (`leuven_rt_position_force`).
 //
 // Ownership: copied while the call runs.
 typedef struct leuven_rt_level {
@@ -189,6 +206,14 @@ typedef struct leuven_rt_level {
   // Number of ripples, 0 to `LEUVEN_RT_MAX_RIPPLES`.
   size_t ripple_count;
 } leuven_rt_level;
+
+// A force that depends on the position alone (docs/model.md#position-dependent-level):
+// cogging, gear mesh, a gravity-like torque along the stroke, added to the output in both
+// directions of motion and not scaled by the level. Its shape is a level's,
+// r(x) = t1·p + t2·(1.5·p² − 0.5) + Σ ripples, but in force units [N or N·m] (the trend and
+// every amplitude), with any finite values: the rules of `leuven_rt_level` without the one on
+// the sum of amplitudes. Zeros with no ripples is no position force.
+typedef struct leuven_rt_level leuven_rt_position_force;
 
 #ifdef __cplusplus
 extern "C" {
@@ -211,25 +236,26 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               struct leuven_rt_compensator **out,
                                               struct leuven_rt_error *error);
 
-// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
-// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
-// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
-// Otherwise as `leuven_rt_compensator_create`.
+// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
+// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 //
-// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
-// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
-// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
-// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
-// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
-// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
-// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
-// start position (`leuven_rt_compensator_set_position`).
+// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
+// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
+// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
+// `friction`, `level` and `position_force`; `units`, `measurement`, `reconstruction` and
+// `report` are checked but not the compensator's. A plain parameter file reads as a model file
+// of that friction, its keys named `friction.<key>`. A model file with a level or a position
+// force in feedforward mode needs the axis's start position: it gives
+// `LEUVEN_RT_NO_START_POSITION` here, and is read with
+// `leuven_rt_compensator_create_from_json_at`.
 //
-// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
-// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
-// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
-// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
-// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`: `Fc`, `Fs`).
+// Text that is not JSON, a `format` or `version` this library does not read (a later version
+// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
+// type or beyond the f64 range give `LEUVEN_RT_INVALID_FILE`; a value that breaks a rule of the
+// model gives `LEUVEN_RT_INVALID_PARAMETER` and the field, as with the struct. The message
+// starts with the key path (`` `level.ripples[0].period`: ``), or says "not JSON" with the line
+// and column of a syntax error.
 //
 // # Safety
 // `json` must be null or point to `len` readable bytes; `out` and `error` as in
@@ -241,9 +267,26 @@ leuven_rt_status leuven_rt_compensator_create_from_json(const char *json,
                                                         struct leuven_rt_compensator **out,
                                                         struct leuven_rt_error *error);
 
-// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
-// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
-// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+// `leuven_rt_compensator_create_from_json` with the axis's start position `x` [m or rad]:
+// where a feedforward compensator places the model file's level from (it then integrates the
+// desired velocity, or takes the positions of `leuven_rt_compensator_step_trajectory`).
+// Observer mode takes the position from its input. A non-finite `x` gives
+// `LEUVEN_RT_NOT_FINITE_INPUT` (field `x`).
+//
+// # Safety
+// As `leuven_rt_compensator_create_from_json`.
+leuven_rt_status leuven_rt_compensator_create_from_json_at(const char *json,
+                                                           size_t len,
+                                                           double dt,
+                                                           int32_t mode,
+                                                           double x,
+                                                           struct leuven_rt_compensator **out,
+                                                           struct leuven_rt_error *error);
+
+// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
+// name), as `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be
+// read (missing, not a regular file, larger than 1 MiB, not UTF-8) gives
+// `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
 //
 // # Safety
 // `path` must be null or a NUL-terminated string; `out` and `error` as in
@@ -253,6 +296,18 @@ leuven_rt_status leuven_rt_compensator_create_from_file(const char *path,
                                                         int32_t mode,
                                                         struct leuven_rt_compensator **out,
                                                         struct leuven_rt_error *error);
+
+// `leuven_rt_compensator_create_from_file` with the axis's start position `x`, as
+// `leuven_rt_compensator_create_from_json_at`.
+//
+// # Safety
+// As `leuven_rt_compensator_create_from_file`.
+leuven_rt_status leuven_rt_compensator_create_from_file_at(const char *path,
+                                                           double dt,
+                                                           int32_t mode,
+                                                           double x,
+                                                           struct leuven_rt_compensator **out,
+                                                           struct leuven_rt_error *error);
 
 // Destroys a compensator made by `leuven_rt_compensator_create`. Null is ignored.
 //
@@ -274,6 +329,21 @@ leuven_rt_status leuven_rt_compensator_step(struct leuven_rt_compensator *compen
                                             double input,
                                             double *force);
 
+// One sample of a planned trajectory: the desired velocity `v` [m/s] drives the model and the
+// desired position `x` [m] places the level and the position force, so that a loop that knows
+// its position does not integrate the velocity; the friction force is written to `*force`. In
+// feedforward mode `x` becomes the compensator's position; in observer mode (a measured
+// velocity beside the measured position) the previous position of the next step. Statuses and
+// `*force` as in `leuven_rt_compensator_step` (a non-finite `v` or `x` gives
+// `LEUVEN_RT_NOT_FINITE_INPUT`).
+//
+// # Safety
+// `compensator` must be null or a live handle; `force` null or valid.
+leuven_rt_status leuven_rt_compensator_step_trajectory(struct leuven_rt_compensator *compensator,
+                                                       double v,
+                                                       double x,
+                                                       double *force);
+
 // Swaps in new parameters between two samples. The hysteresis force carries over, so the
 // output has no jump. The new set must have the same kind of hysteresis and number of
 // elements (`LEUVEN_RT_INCOMPATIBLE_PARAMS` otherwise, with the expected count in
@@ -294,8 +364,10 @@ leuven_rt_status leuven_rt_compensator_reset(struct leuven_rt_compensator *compe
 // Gives the compensator a position-dependent level (see `leuven_rt_level`), replacing the one it
 // had; the model state carries over and the next step's output uses the new level. In
 // feedforward mode the level is evaluated at the position integrated from the desired
-// velocity: give the axis's start position with `leuven_rt_compensator_set_position`.
-// Does not allocate; `error`, if not null, is written on every return.
+// velocity (or given to `leuven_rt_compensator_step_trajectory`), from the axis's start
+// position: without one (`leuven_rt_compensator_set_position`) a level that is not flat gives
+// `LEUVEN_RT_NO_START_POSITION`. Does not allocate; `error`, if not null, is written on every
+// return.
 //
 // # Safety
 // `compensator` null or live; `level` null or valid, with `level->ripples` null or pointing to
@@ -305,10 +377,20 @@ leuven_rt_status leuven_rt_compensator_set_level(struct leuven_rt_compensator *c
                                                  const struct leuven_rt_level *level,
                                                  struct leuven_rt_error *error);
 
-// Sets the position [m or rad] from which feedforward mode integrates the desired velocity
-// (x ← x + v·dt each step) to evaluate the level; 0 until set. Observer mode takes the
-// position from its input and does not read it. A non-finite `x` gives
-// `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
+// Gives the compensator a position force (see `leuven_rt_position_force`), replacing the one it
+// had, as `leuven_rt_compensator_set_level` does with a level: the next step's output adds
+// r(x). Does not allocate; `error`, if not null, is written on every return.
+//
+// # Safety
+// As `leuven_rt_compensator_set_level`, for `force`.
+leuven_rt_status leuven_rt_compensator_set_position_force(struct leuven_rt_compensator *compensator,
+                                                          const leuven_rt_position_force *force,
+                                                          struct leuven_rt_error *error);
+
+// Sets the axis's position [m or rad], from which feedforward mode integrates the desired
+// velocity (x ← x + v·dt each step) to place the level and the position force; unknown until
+// set, and needed before either is given. Observer mode takes the position from its input and
+// does not read it. A non-finite `x` gives `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
 //
 // # Safety
 // `compensator` must be null or a live handle.

@@ -42,13 +42,12 @@
 use core::ffi::{c_char, CStr};
 use core::fmt::{self, Write as _};
 
-use serde::Deserialize;
-
 use gms_core::{Error, Field, Mode};
 use gms_dyn::{
-    Compensator, HysteresisKind, Level, RawElements, RawParams, RippleTerms, MAX_HARMONICS,
-    MAX_RIPPLES,
+    Compensator, HysteresisKind, Level, PositionForce, RawElements, RawParams, RippleTerms, Terms,
+    MAX_HARMONICS, MAX_RIPPLES,
 };
+use gms_file::{FileError, ModelFile};
 
 /// The largest number of Maxwell-slip elements `leuven_rt_params.elements` may have.
 pub const LEUVEN_RT_MAX_ELEMENTS: usize = 32;
@@ -100,28 +99,38 @@ pub enum leuven_rt_status {
     /// The step produced a non-finite force (inputs far outside SI magnitudes). The output
     /// holds the last good force.
     LEUVEN_RT_STEP_FAILED = 7,
-    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not a JSON
-    /// object, has a model file's `format` or `version` other than "leuven-rt model" and 1, or
-    /// has an unknown, missing or mistyped key; the error message names the key or the cause.
+    /// A parameter file or model file (`_from_json`, `_from_file`) cannot be read, is not JSON,
+    /// has a `format` or `version` this library does not read, or has a key given twice, an
+    /// unknown or missing key, or a value of the wrong type; the error message names the key
+    /// path or the cause (docs/data-and-reports.md#model-file).
     LEUVEN_RT_INVALID_FILE = 8,
+    /// A feedforward compensator was given a level or a position force (by a call, or in a
+    /// model file) without the axis's start position: they would be placed from x = 0, out of
+    /// phase with the machine. Call `leuven_rt_compensator_set_position` first, or create from a
+    /// model file with `leuven_rt_compensator_create_from_json_at` / `_from_file_at`. The error
+    /// detail names `x`.
+    LEUVEN_RT_NO_START_POSITION = 9,
 }
 
 use leuven_rt_status::{
     LEUVEN_RT_INCOMPATIBLE_PARAMS, LEUVEN_RT_INVALID_DT, LEUVEN_RT_INVALID_FILE,
     LEUVEN_RT_INVALID_MODE, LEUVEN_RT_INVALID_PARAMETER, LEUVEN_RT_INVALID_POINTER,
-    LEUVEN_RT_NOT_FINITE_INPUT, LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
+    LEUVEN_RT_NOT_FINITE_INPUT, LEUVEN_RT_NO_START_POSITION, LEUVEN_RT_OK, LEUVEN_RT_STEP_FAILED,
 };
 
 /// Parameters of the modified Leuven model (docs/parameters.md), SI units.
 ///
 /// Maxwell slip: `elements` (1 to `LEUVEN_RT_MAX_ELEMENTS`) values in each of `W` and `Delta`,
 /// and `sigma0 = 0`. Linear (LuGre-like) hysteresis: `elements = 0`, `sigma0 > 0`, `W` and
-/// `Delta` ignored. `Fc_neg` and `Fs_neg` of 0 mean "same as `Fc` and `Fs`".
+/// `Delta` ignored. `Fc_neg`, `Fs_neg` and `sigma2_neg` of 0 mean "same as `Fc`, `Fs` and
+/// `sigma2`" (so a struct written before `sigma2_neg` existed, zero-filled, keeps its meaning; a
+/// viscous coefficient of exactly 0 for v < 0 beside a non-zero `sigma2` is given in a parameter
+/// file instead).
 ///
 /// Rules (each broken one gives `LEUVEN_RT_INVALID_PARAMETER` and its member's name in
 /// `leuven_rt_error.field`): `Fc`, `Fs`, `Vs`, `delta`, `n` (and `Fc_neg`, `Fs_neg`,
 /// `sigma0` when used) finite, > 0 and not subnormal; `Fs >= Fc` and `Fs_neg >= Fc_neg`;
-/// `sigma1`, `sigma2` finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
+/// `sigma1`, `sigma2` (and `sigma2_neg` when used) finite and >= 0; each `W[i]` finite and > 0 and each `Delta[i]`
 /// finite and > 0 with `W[i] / Delta[i]` finite (the offending `i` in `error.index`);
 /// `sum(W)` finite (field `W`, the index of the largest); the sum of the stiffnesses
 /// `W[i] / Delta[i]` finite (field `Delta`, index 0); each `Delta[i]` at least 2^-26 times the
@@ -150,8 +159,10 @@ pub struct leuven_rt_params {
     pub n: f64,
     /// Micro-viscous coefficient [N·s/m].
     pub sigma1: f64,
-    /// Viscous coefficient [N·s/m].
+    /// Viscous coefficient [N·s/m] (for v >= 0 when `sigma2_neg` is given).
     pub sigma2: f64,
+    /// Viscous coefficient for v < 0 [N·s/m]; 0: `sigma2`.
+    pub sigma2_neg: f64,
     /// Stiffness of linear hysteresis [N/m]; 0 with Maxwell-slip elements.
     pub sigma0: f64,
     /// Saturation forces of the elements [N], `elements` values.
@@ -167,9 +178,10 @@ pub struct leuven_rt_params {
 /// index k − 1).
 ///
 /// Rules (`LEUVEN_RT_INVALID_PARAMETER`, with the member's name in `leuven_rt_error.field` and
-/// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and not subnormal;
-/// `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every amplitude finite. `cos` and `sin` may
-/// be null when `harmonics` is 0.
+/// the ripple's index in `leuven_rt_error.index`): `period` finite, > 0 and at least 2^20 ulps
+/// of max(|middle| + `half_stroke`, 1), the largest position the level covers (a finer period's
+/// phase cannot be resolved there); `harmonics` at most `LEUVEN_RT_MAX_HARMONICS`; every
+/// amplitude finite. `cos` and `sin` may be null when `harmonics` is 0.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct leuven_rt_ripple {
@@ -190,10 +202,14 @@ pub struct leuven_rt_ripple {
 ///
 /// Rules (`LEUVEN_RT_INVALID_PARAMETER`, the member's name in `leuven_rt_error.field`):
 /// `middle` and `trend` finite (`index` says which `trend` entry); `half_stroke` finite, > 0
-/// and not subnormal; `ripple_count` at most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in
-/// `leuven_rt_ripple`; and |t1| + |t2| + the sum of every |amplitude| below 1, so that the factor
-/// is positive everywhere (field "level"). `ripples` may be null when `ripple_count` is 0. A
-/// level of zeros with no ripples is the flat level: the plain model's output, bit for bit.
+/// and at least 2^20 ulps of max(|middle| + `half_stroke`, 1) (field `middle` when the middle is
+/// so far from 0 that a half stroke resolved about 0 is not resolved there); `ripple_count` at
+/// most `LEUVEN_RT_MAX_RIPPLES`; each ripple as in `leuven_rt_ripple`; and |t1| + |t2| + the sum
+/// of every |amplitude| below 1, so that the factor is positive everywhere (field "level").
+/// `ripples` may be null when `ripple_count` is 0. A level of zeros with no ripples is the flat
+/// level: the plain model's output, bit for bit.
+///
+/// The same struct describes a position force (`leuven_rt_position_force`).
 ///
 /// Ownership: copied while the call runs.
 #[repr(C)]
@@ -210,6 +226,14 @@ pub struct leuven_rt_level {
     /// Number of ripples, 0 to `LEUVEN_RT_MAX_RIPPLES`.
     pub ripple_count: usize,
 }
+
+/// A force that depends on the position alone (docs/model.md#position-dependent-level):
+/// cogging, gear mesh, a gravity-like torque along the stroke, added to the output in both
+/// directions of motion and not scaled by the level. Its shape is a level's,
+/// r(x) = t1·p + t2·(1.5·p² − 0.5) + Σ ripples, but in force units [N or N·m] (the trend and
+/// every amplitude), with any finite values: the rules of `leuven_rt_level` without the one on
+/// the sum of amplitudes. Zeros with no ripples is no position force.
+pub type leuven_rt_position_force = leuven_rt_level;
 
 /// Why a call that takes one was refused. Every function with an `error` argument writes all of
 /// it on every return when `error` is not null, whatever the status: on `LEUVEN_RT_OK`,
@@ -250,7 +274,8 @@ pub extern "C" fn leuven_rt_status_message(status: i32) -> *const c_char {
         5 => c"the input must be finite (and, in observer mode, give a finite velocity)",
         6 => c"the new parameters have another kind or number of elements",
         7 => c"the step produced a non-finite force",
-        8 => c"the parameter or model file cannot be read, or has another format or version, or an unknown, missing or mistyped key",
+        8 => c"the parameter or model file cannot be read, is not JSON, has another format or version, or a repeated, unknown, missing or mistyped key",
+        9 => c"a feedforward compensator needs the axis's start position before a level or a position force",
         _ => c"unknown status",
     };
     message.as_ptr()
@@ -278,30 +303,31 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
         let mode = checked_mode(mode)?;
         // SAFETY: as above, for `params` and the arrays it points to.
         let raw = unsafe { raw_params(params) }.ok_or_else(|| Refusal::pointer("params"))?;
-        build(&raw, dt, mode, &Level::none(), out)
+        build(&raw, dt, mode, &Terms::default(), out)
     });
     finish(created, error)
 }
 
-/// Creates a compensator from the text of a parameter file (the JSON that `leuven_rt.Params.save`
-/// writes; keys of docs/parameters.md) or of a versioned model file (what `leuven-rt identify`
-/// writes; docs/parameters.md#model-file): `len` bytes at `json`, UTF-8, no terminating NUL needed.
-/// Otherwise as `leuven_rt_compensator_create`.
+/// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
+/// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+/// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 ///
-/// A JSON object with a `format` key is a model file: `format` must be "leuven-rt model" and
-/// `version` 1 (anything else gives `LEUVEN_RT_INVALID_FILE` saying what came); its keys are
-/// `format`, `version`, `units` ("linear" or "rotary", informational), `friction` (the keys of a
-/// parameter file), `level` (null or the position-dependent level, see `leuven_rt_level`; its
-/// rules give `LEUVEN_RT_INVALID_PARAMETER`), `measurement` (`offset` and `inertia`, finite
-/// numbers, not friction: the compensator leaves them out) and `report` (ignored); any other key
-/// gives `LEUVEN_RT_INVALID_FILE`. A model file with a level in feedforward mode needs the
-/// start position (`leuven_rt_compensator_set_position`).
+/// The text is read by the reader the Python package uses (the Rust crate gms-file), so both
+/// accept and refuse the same texts; docs/data-and-reports.md#model-file lists every key and
+/// every refusal. A JSON object with a `format` key is a model file; the compensator takes its
+/// `friction`, `level` and `position_force`; `units`, `measurement`, `reconstruction` and
+/// `report` are checked but not the compensator's. A plain parameter file reads as a model file
+/// of that friction, its keys named `friction.<key>`. A model file with a level or a position
+/// force in feedforward mode needs the axis's start position: it gives
+/// `LEUVEN_RT_NO_START_POSITION` here, and is read with
+/// `leuven_rt_compensator_create_from_json_at`.
 ///
-/// Unknown keys, missing required keys (`Fc`, `Fs`, `Vs`, `delta`, `n`), values of the wrong
-/// type and text that is not a JSON object give `LEUVEN_RT_INVALID_FILE`, with the key or the
-/// cause in `error->message`; values that break a rule give `LEUVEN_RT_INVALID_PARAMETER` and
-/// the field, as with the struct. Keys left out take the defaults of docs/parameters.md
-/// (`sigma1`, `sigma2`: 0; `Fc_neg`, `Fs_neg`: `Fc`, `Fs`).
+/// Text that is not JSON, a `format` or `version` this library does not read (a later version
+/// says "upgrade leuven-rt"), a key given twice, an unknown or missing key, a value of the wrong
+/// type or beyond the f64 range give `LEUVEN_RT_INVALID_FILE`; a value that breaks a rule of the
+/// model gives `LEUVEN_RT_INVALID_PARAMETER` and the field, as with the struct. The message
+/// starts with the key path (`` `level.ripples[0].period`: ``), or says "not JSON" with the line
+/// and column of a syntax error.
 ///
 /// # Safety
 /// `json` must be null or point to `len` readable bytes; `out` and `error` as in
@@ -325,14 +351,50 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
         // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
         // alignment.
         let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        from_json_text(text, dt, mode, out)
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, None, out)
     });
     finish(created, error)
 }
 
-/// Creates a compensator from a parameter file at `path` (a NUL-terminated file name), as
-/// `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be read
-/// gives `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
+/// `leuven_rt_compensator_create_from_json` with the axis's start position `x` [m or rad]:
+/// where a feedforward compensator places the model file's level from (it then integrates the
+/// desired velocity, or takes the positions of `leuven_rt_compensator_step_trajectory`).
+/// Observer mode takes the position from its input. A non-finite `x` gives
+/// `LEUVEN_RT_NOT_FINITE_INPUT` (field `x`).
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_json`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_json_at(
+    json: *const c_char,
+    len: usize,
+    dt: f64,
+    mode: i32,
+    x: f64,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if json.is_null() || len > isize::MAX as usize {
+            return Err(Refusal::pointer("json"));
+        }
+        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
+        // alignment.
+        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
+    });
+    finish(created, error)
+}
+
+/// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
+/// name), as `leuven_rt_compensator_create_from_json` does with its text. A file that cannot be
+/// read (missing, not a regular file, larger than 1 MiB, not UTF-8) gives
+/// `LEUVEN_RT_INVALID_FILE` with the reason in `error->message`.
 ///
 /// # Safety
 /// `path` must be null or a NUL-terminated string; `out` and `error` as in
@@ -362,8 +424,45 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
                 format_args!("the path is not UTF-8"),
             )
         })?);
-        let text = read_parameter_file(path)?;
-        from_json_text(&text, dt, mode, out)
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, None, out)
+    });
+    finish(created, error)
+}
+
+/// `leuven_rt_compensator_create_from_file` with the axis's start position `x`, as
+/// `leuven_rt_compensator_create_from_json_at`.
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_file`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_create_from_file_at(
+    path: *const c_char,
+    dt: f64,
+    mode: i32,
+    x: f64,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if path.is_null() {
+            return Err(Refusal::pointer("path"));
+        }
+        // SAFETY: non-null and NUL-terminated by the caller's contract.
+        let path = unsafe { CStr::from_ptr(path) };
+        let path = std::path::Path::new(path.to_str().map_err(|_| {
+            Refusal::new(
+                LEUVEN_RT_INVALID_FILE,
+                c"",
+                0,
+                format_args!("the path is not UTF-8"),
+            )
+        })?);
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, Some(x), out)
     });
     finish(created, error)
 }
@@ -406,13 +505,53 @@ pub unsafe extern "C" fn leuven_rt_compensator_step(
         *force = 0.0;
         return LEUVEN_RT_INVALID_POINTER;
     };
-    match compensator.compensator.step(input) {
+    let result = compensator.compensator.step(input);
+    stepped(&compensator.compensator, result, force)
+}
+
+/// One sample of a planned trajectory: the desired velocity `v` [m/s] drives the model and the
+/// desired position `x` [m] places the level and the position force, so that a loop that knows
+/// its position does not integrate the velocity; the friction force is written to `*force`. In
+/// feedforward mode `x` becomes the compensator's position; in observer mode (a measured
+/// velocity beside the measured position) the previous position of the next step. Statuses and
+/// `*force` as in `leuven_rt_compensator_step` (a non-finite `v` or `x` gives
+/// `LEUVEN_RT_NOT_FINITE_INPUT`).
+///
+/// # Safety
+/// `compensator` must be null or a live handle; `force` null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_step_trajectory(
+    compensator: *mut leuven_rt_compensator,
+    v: f64,
+    x: f64,
+    force: *mut f64,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, force) = unsafe { (checked_mut(compensator), checked_mut(force)) };
+    let Some(force) = force else {
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let Some(compensator) = compensator else {
+        *force = 0.0;
+        return LEUVEN_RT_INVALID_POINTER;
+    };
+    let result = compensator.compensator.step_trajectory(v, x);
+    stepped(&compensator.compensator, result, force)
+}
+
+/// The status of a step, with the force (or the last good one) written.
+fn stepped(
+    compensator: &Compensator,
+    result: Result<f64, Error>,
+    force: &mut f64,
+) -> leuven_rt_status {
+    match result {
         Ok(value) => {
             *force = value;
             LEUVEN_RT_OK
         }
         Err(error) => {
-            *force = compensator.compensator.output();
+            *force = compensator.output();
             match error {
                 Error::NotFinite { .. } | Error::VelocityNotFinite { .. } => {
                     LEUVEN_RT_NOT_FINITE_INPUT
@@ -472,8 +611,10 @@ pub unsafe extern "C" fn leuven_rt_compensator_reset(
 /// Gives the compensator a position-dependent level (see `leuven_rt_level`), replacing the one it
 /// had; the model state carries over and the next step's output uses the new level. In
 /// feedforward mode the level is evaluated at the position integrated from the desired
-/// velocity: give the axis's start position with `leuven_rt_compensator_set_position`.
-/// Does not allocate; `error`, if not null, is written on every return.
+/// velocity (or given to `leuven_rt_compensator_step_trajectory`), from the axis's start
+/// position: without one (`leuven_rt_compensator_set_position`) a level that is not flat gives
+/// `LEUVEN_RT_NO_START_POSITION`. Does not allocate; `error`, if not null, is written on every
+/// return.
 ///
 /// # Safety
 /// `compensator` null or live; `level` null or valid, with `level->ripples` null or pointing to
@@ -491,17 +632,46 @@ pub unsafe extern "C" fn leuven_rt_compensator_set_level(
         .ok_or_else(|| Refusal::pointer("compensator"))
         .and_then(|compensator| {
             // SAFETY: as above, for `level` and the arrays it points to.
-            let level = unsafe { c_level(level) }?;
-            compensator.compensator.set_level(&level);
-            Ok(())
+            let level = unsafe { c_series(level, "level", Level::new) }?;
+            compensator
+                .compensator
+                .set_level(&level)
+                .map_err(|reason| Refusal::from_dyn(reason.into()))
         });
     finish(set, error)
 }
 
-/// Sets the position [m or rad] from which feedforward mode integrates the desired velocity
-/// (x ← x + v·dt each step) to evaluate the level; 0 until set. Observer mode takes the
-/// position from its input and does not read it. A non-finite `x` gives
-/// `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
+/// Gives the compensator a position force (see `leuven_rt_position_force`), replacing the one it
+/// had, as `leuven_rt_compensator_set_level` does with a level: the next step's output adds
+/// r(x). Does not allocate; `error`, if not null, is written on every return.
+///
+/// # Safety
+/// As `leuven_rt_compensator_set_level`, for `force`.
+#[no_mangle]
+pub unsafe extern "C" fn leuven_rt_compensator_set_position_force(
+    compensator: *mut leuven_rt_compensator,
+    force: *const leuven_rt_position_force,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (compensator, error) = unsafe { (checked_mut(compensator), checked_mut(error)) };
+    let set = compensator
+        .ok_or_else(|| Refusal::pointer("compensator"))
+        .and_then(|compensator| {
+            // SAFETY: as above, for `force` and the arrays it points to.
+            let force = unsafe { c_series(force, "force", PositionForce::new) }?;
+            compensator
+                .compensator
+                .set_position_force(&force)
+                .map_err(|reason| Refusal::from_dyn(reason.into()))
+        });
+    finish(set, error)
+}
+
+/// Sets the axis's position [m or rad], from which feedforward mode integrates the desired
+/// velocity (x ← x + v·dt each step) to place the level and the position force; unknown until
+/// set, and needed before either is given. Observer mode takes the position from its input and
+/// does not read it. A non-finite `x` gives `LEUVEN_RT_NOT_FINITE_INPUT` and changes nothing.
 ///
 /// # Safety
 /// `compensator` must be null or a live handle.
@@ -585,7 +755,8 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
     Some(unsafe { core::slice::from_raw_parts(pointer, count) })
 }
 
-/// The caller's level, validated by gms-core; a null or misaligned pointer (the level, its
+/// The caller's level or position force (`name`), validated by gms-core through `build`
+/// ([`Level::new`] or [`PositionForce::new`]); a null or misaligned pointer (the struct, its
 /// ripples, or a ripple's amplitudes) is refused.
 ///
 /// Counts beyond the maxima are refused before any array is read past them.
@@ -593,14 +764,18 @@ unsafe fn array<'a>(pointer: *const f64, count: usize) -> Option<&'a [f64]> {
 /// # Safety
 /// As [`checked`] for `level`; its `ripples` must point to `ripple_count` ripples and each
 /// ripple's `cos` and `sin` to `harmonics` doubles (read only up to the maxima + 1).
-unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
+unsafe fn c_series<T>(
+    level: *const leuven_rt_level,
+    name: &str,
+    build: impl FnOnce(f64, f64, [f64; 2], &[RippleTerms<'_>]) -> Result<T, Error>,
+) -> Result<T, Refusal> {
     // SAFETY: passed on from the caller's contract.
-    let level = unsafe { checked(level) }.ok_or_else(|| Refusal::pointer("level"))?;
+    let level = unsafe { checked(level) }.ok_or_else(|| Refusal::pointer(name))?;
     let count = level.ripple_count.min(MAX_RIPPLES + 1);
     let c_ripples: &[leuven_rt_ripple] = if count == 0 {
         &[]
     } else if level.ripples.is_null() || !level.ripples.is_aligned() {
-        return Err(Refusal::pointer("level->ripples"));
+        return Err(Refusal::pointer(format_args!("{name}->ripples")));
     } else {
         // SAFETY: non-null and aligned; `ripple_count` valid ripples by the caller's contract,
         // of which at most MAX_RIPPLES + 1 are read.
@@ -616,7 +791,9 @@ unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
         // SAFETY: passed on from the caller's contract.
         let (cos, sin) = unsafe { (array(ripple.cos, harmonics), array(ripple.sin, harmonics)) };
         let (Some(cos), Some(sin)) = (cos, sin) else {
-            return Err(Refusal::pointer("level->ripples[i].cos or .sin"));
+            return Err(Refusal::pointer(format_args!(
+                "{name}->ripples[i].cos or .sin"
+            )));
         };
         *slot = RippleTerms {
             period: ripple.period,
@@ -624,7 +801,7 @@ unsafe fn c_level(level: *const leuven_rt_level) -> Result<Level, Refusal> {
             sin,
         };
     }
-    Level::new(
+    build(
         level.middle,
         level.half_stroke,
         level.trend,
@@ -664,6 +841,7 @@ unsafe fn raw_params<'a>(params: *const leuven_rt_params) -> Option<RawParams<'a
         sigma2: params.sigma2,
         fc_neg: or(params.Fc_neg, params.Fc),
         fs_neg: or(params.Fs_neg, params.Fs),
+        sigma2_neg: (params.sigma2_neg != 0.0).then_some(params.sigma2_neg),
         sigma0: (linear || params.sigma0 != 0.0).then_some(params.sigma0),
         elements: (!linear).then_some(RawElements { w, delta }),
     })
@@ -697,7 +875,7 @@ impl Refusal {
     }
 
     /// A null or misaligned pointer argument.
-    fn pointer(argument: &str) -> Self {
+    fn pointer(argument: impl fmt::Display) -> Self {
         Refusal::new(
             LEUVEN_RT_INVALID_POINTER,
             c"",
@@ -708,14 +886,31 @@ impl Refusal {
 
     /// A refused parameter set (or `dt`).
     fn from_dyn(reason: gms_dyn::Error) -> Self {
+        let (status, field, index) = Refusal::sort(reason);
+        Refusal::new(status, field, index, format_args!("{reason}"))
+    }
+
+    /// A refused model file or parameter file: a value that breaks a rule of the model gives
+    /// the status, field and index of that rule (as the struct's would), anything else
+    /// `LEUVEN_RT_INVALID_FILE`; the message names the key path.
+    fn from_file(reason: &FileError) -> Self {
+        let (status, field, index) = match reason.rule() {
+            Some(rule) => Refusal::sort(rule),
+            None => (LEUVEN_RT_INVALID_FILE, c"", 0),
+        };
+        Refusal::new(status, field, index, format_args!("{reason}"))
+    }
+
+    /// The status, the field and the index of a refusal of gms-dyn.
+    fn sort(reason: gms_dyn::Error) -> (leuven_rt_status, &'static CStr, usize) {
         use gms_dyn::Error as Refused;
-        let (status, field, index) = match reason {
+        match reason {
             Refused::Core(Error::NotPositive {
                 field: Field::dt, ..
             }) => (LEUVEN_RT_INVALID_DT, c"dt", 0),
-            Refused::Core(Error::Element { field, index, .. }) => {
-                (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index)
-            }
+            Refused::Core(
+                Error::Element { field, index, .. } | Error::PhaseUnresolved { field, index, .. },
+            ) => (LEUVEN_RT_INVALID_PARAMETER, field_name(field), index),
             Refused::Core(
                 Error::NotPositive { field, .. }
                 | Error::Negative { field, .. }
@@ -743,6 +938,12 @@ impl Refusal {
                 (LEUVEN_RT_INVALID_PARAMETER, field_name(field), ripple)
             }
             Refused::Core(Error::LevelTooDeep { .. }) => (LEUVEN_RT_INVALID_PARAMETER, c"level", 0),
+            Refused::Core(Error::Missing { field }) => {
+                (LEUVEN_RT_NO_START_POSITION, field_name(field), 0)
+            }
+            Refused::Core(Error::NotFiniteValue {
+                field: Field::x, ..
+            }) => (LEUVEN_RT_NOT_FINITE_INPUT, c"x", 0),
             Refused::Core(Error::ForceSumOverflow { index, .. }) => {
                 (LEUVEN_RT_INVALID_PARAMETER, c"W", index)
             }
@@ -769,8 +970,7 @@ impl Refusal {
                 },
             ),
             _ => (LEUVEN_RT_INVALID_PARAMETER, c"", 0),
-        };
-        Refusal::new(status, field, index, format_args!("{reason}"))
+        }
     }
 }
 
@@ -846,277 +1046,43 @@ fn checked_mode(mode: i32) -> Result<Mode, Refusal> {
     }
 }
 
-/// Validates `raw`, builds the compensator and writes its handle to `*out`.
+/// Validates `raw`, builds the compensator with `terms` and writes its handle to `*out`.
 fn build(
     raw: &RawParams<'_>,
     dt: f64,
     mode: Mode,
-    level: &Level,
+    terms: &Terms,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
     let compensator = raw
         .validate()
-        .and_then(|set| Compensator::with_level(&set, dt, mode, level))
+        .and_then(|set| Compensator::with_terms(&set, dt, mode, terms))
         .map_err(Refusal::from_dyn)?;
     *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
     Ok(())
 }
 
-/// A parameter file: the keys of docs/parameters.md, no others.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ParamsFile {
-    Fc: f64,
-    Fs: f64,
-    Vs: f64,
-    delta: f64,
-    n: f64,
-    #[serde(default)]
-    sigma1: f64,
-    #[serde(default)]
-    sigma2: f64,
-    W: Option<Vec<f64>>,
-    Delta: Option<Vec<f64>>,
-    Fc_neg: Option<f64>,
-    Fs_neg: Option<f64>,
-    sigma0: Option<f64>,
-}
-
-/// The largest parameter file read: far above any real one (32 elements), and small enough that
-/// a path to a device or a huge file cannot exhaust memory.
-const MAX_PARAMETER_FILE_BYTES: u64 = 1 << 20;
-
-/// Reads a parameter file: a regular file of at most [`MAX_PARAMETER_FILE_BYTES`] (a FIFO or a
-/// device would block or never end).
-fn read_parameter_file(path: &std::path::Path) -> Result<Vec<u8>, Refusal> {
-    use std::io::Read;
-    let refuse = |reason: &dyn fmt::Display| {
-        Refusal::new(
-            LEUVEN_RT_INVALID_FILE,
-            c"",
-            0,
-            format_args!("cannot read {}: {reason}", path.display()),
-        )
-    };
-    let file = std::fs::File::open(path).map_err(|reason| refuse(&reason))?;
-    let metadata = file.metadata().map_err(|reason| refuse(&reason))?;
-    if !metadata.is_file() {
-        return Err(refuse(&"not a regular file"));
-    }
-    let mut text = Vec::new();
-    file.take(MAX_PARAMETER_FILE_BYTES + 1)
-        .read_to_end(&mut text)
-        .map_err(|reason| refuse(&reason))?;
-    if text.len() as u64 > MAX_PARAMETER_FILE_BYTES {
-        return Err(refuse(&format_args!(
-            "larger than {MAX_PARAMETER_FILE_BYTES} bytes"
-        )));
-    }
-    Ok(text)
-}
-
-/// The `format` of a versioned model file (docs/parameters.md#model-file).
-const MODEL_FORMAT: &str = "leuven-rt model";
-
-/// The one `version` of the model file this library reads.
-const MODEL_VERSION: u64 = 1;
-
-/// A versioned model file (docs/parameters.md#model-file): the friction parameters, an optional
-/// position-dependent level, measurement terms (checked, not used) and a report (ignored).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ModelFile {
-    #[allow(dead_code)] // checked by the probe before this is read
-    format: String,
-    #[allow(dead_code)] // checked by the probe before this is read
-    version: u64,
-    units: Units,
-    friction: ParamsFile,
-    #[serde(default)]
-    level: Option<LevelFile>,
-    #[serde(default)]
-    measurement: Option<MeasurementFile>,
-    #[serde(default)]
-    #[allow(dead_code)]
-    // read so that the key is allowed; its content is not the compensator's
-    report: Option<serde::de::IgnoredAny>,
-}
-
-/// What the positions are: informational for the compensator.
-#[derive(Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum Units {
-    Linear,
-    Rotary,
-}
-
-/// The `level` object of a model file: `leuven_rt.PositionLevel`'s fields, with its defaults.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LevelFile {
-    #[serde(default)]
-    middle: f64,
-    #[serde(default = "one")]
-    half_stroke: f64,
-    #[serde(default)]
-    trend: [f64; 2],
-    #[serde(default)]
-    ripples: Vec<RippleFile>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-/// One ripple of a model file's level.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RippleFile {
-    period: f64,
-    cos: Vec<f64>,
-    sin: Vec<f64>,
-}
-
-/// The measurement terms of a model file: a force offset and an inertia that the log's force
-/// contained; not friction, so the compensator leaves them out.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MeasurementFile {
-    #[serde(default)]
-    offset: f64,
-    #[serde(default)]
-    inertia: f64,
-}
-
-/// Whether a JSON object has a `format` key (a model file) or not (a parameter file).
-#[derive(Deserialize)]
-struct Probe {
-    #[serde(default)]
-    format: Option<serde_json::Value>,
-    #[serde(default)]
-    version: Option<serde_json::Value>,
-}
-
-/// A refused file: `LEUVEN_RT_INVALID_FILE` with the cause.
-fn invalid_file(message: fmt::Arguments<'_>) -> Refusal {
-    Refusal::new(LEUVEN_RT_INVALID_FILE, c"", 0, message)
-}
-
-/// Parses the text of a parameter file or of a versioned model file (an object with a
-/// `format` key) and builds the compensator from it.
-fn from_json_text(
-    text: &[u8],
+/// Builds the compensator from a read model file (or parameter file), starting at `start` if
+/// given: every value validated, each refusal naming its key.
+fn from_file(
+    file: &ModelFile,
     dt: f64,
     mode: Mode,
+    start: Option<f64>,
     out: &mut *mut leuven_rt_compensator,
 ) -> Result<(), Refusal> {
-    // A first look at `format` and `version` only, so that a file of another version is
-    // called that (not refused for keys this version does not know); the file is then read
-    // once more as what it is, so that serde's messages keep their line and column and
-    // duplicate keys stay refused.
-    let probe = serde_json::from_slice::<Probe>(text).ok();
-    let Some(Probe {
-        format: Some(format),
-        version,
-    }) = probe
-    else {
-        let file: ParamsFile = serde_json::from_slice(text)
-            .map_err(|reason| invalid_file(format_args!("parameter file: {reason}")))?;
-        return from_params_file(&file, dt, mode, &Level::none(), out);
+    let model = file
+        .validate()
+        .map_err(|reason| Refusal::from_file(&reason))?;
+    let terms = Terms {
+        start,
+        level: model.level,
+        position_force: model.position_force,
     };
-    if format.as_str() != Some(MODEL_FORMAT) {
-        return Err(invalid_file(format_args!(
-            "model file: `format` must be {MODEL_FORMAT:?}, got {format}"
-        )));
-    }
-    match version {
-        Some(version) if version.as_u64() == Some(MODEL_VERSION) => {}
-        Some(version) => {
-            return Err(invalid_file(format_args!(
-                "model file: `version` must be {MODEL_VERSION}, got {version}"
-            )))
-        }
-        None => {
-            return Err(invalid_file(format_args!(
-                "model file: `version` must be {MODEL_VERSION}, got none"
-            )))
-        }
-    }
-    let file: ModelFile = serde_json::from_slice(text)
-        .map_err(|reason| invalid_file(format_args!("model file: {reason}")))?;
-    // Informational: positions in metres or radians read the same to the compensator.
-    let (Units::Linear | Units::Rotary) = file.units;
-    if let Some(measurement) = &file.measurement {
-        for (key, value) in [
-            ("offset", measurement.offset),
-            ("inertia", measurement.inertia),
-        ] {
-            // serde_json refuses numbers beyond f64; this keeps the rule explicit.
-            if !value.is_finite() {
-                return Err(invalid_file(format_args!(
-                    "model file: `measurement.{key}` must be finite, got {value}"
-                )));
-            }
-        }
-    }
-    let level = match &file.level {
-        None => Level::none(),
-        Some(level) => {
-            let mut terms = Vec::with_capacity(level.ripples.len());
-            terms.extend(level.ripples.iter().map(|ripple| RippleTerms {
-                period: ripple.period,
-                cos: &ripple.cos,
-                sin: &ripple.sin,
-            }));
-            Level::new(level.middle, level.half_stroke, level.trend, &terms)
-                .map_err(|reason| Refusal::from_dyn(reason.into()))?
-        }
-    };
-    from_params_file(&file.friction, dt, mode, &level, out)
-}
-
-/// Builds the compensator from the keys of a parameter file and a level.
-fn from_params_file(
-    file: &ParamsFile,
-    dt: f64,
-    mode: Mode,
-    level: &Level,
-    out: &mut *mut leuven_rt_compensator,
-) -> Result<(), Refusal> {
-    let elements = match (&file.W, &file.Delta) {
-        (Some(w), Some(delta)) => Some(RawElements { w, delta }),
-        (None, None) => None,
-        (Some(_), None) | (None, Some(_)) => {
-            let (given, missing) = if file.W.is_some() {
-                ("W", c"Delta")
-            } else {
-                ("Delta", c"W")
-            };
-            return Err(Refusal::new(
-                LEUVEN_RT_INVALID_PARAMETER,
-                missing,
-                0,
-                format_args!(
-                    "parameter file: `{given}` is given without `{}`; Maxwell slip needs both",
-                    missing.to_string_lossy()
-                ),
-            ));
-        }
-    };
-    let raw = RawParams {
-        fc: file.Fc,
-        fs: file.Fs,
-        vs: file.Vs,
-        delta: file.delta,
-        n: file.n,
-        sigma1: file.sigma1,
-        sigma2: file.sigma2,
-        fc_neg: file.Fc_neg.unwrap_or(file.Fc),
-        fs_neg: file.Fs_neg.unwrap_or(file.Fs),
-        sigma0: file.sigma0,
-        elements,
-    };
-    build(&raw, dt, mode, level, out)
+    let compensator =
+        Compensator::with_terms(&model.params, dt, mode, &terms).map_err(Refusal::from_dyn)?;
+    *out = Box::into_raw(Box::new(leuven_rt_compensator { compensator }));
+    Ok(())
 }
 
 /// The member of `leuven_rt_params` that holds `field`.
@@ -1134,7 +1100,10 @@ fn field_name(field: Field) -> &'static CStr {
         Field::Delta => c"Delta",
         Field::Fc_neg => c"Fc_neg",
         Field::Fs_neg => c"Fs_neg",
+        Field::sigma2_neg => c"sigma2_neg",
         Field::dt => c"dt",
+        Field::x => c"x",
+        Field::period => c"period",
         Field::middle => c"middle",
         Field::half_stroke => c"half_stroke",
         Field::trend => c"trend",

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use gms_core::{
-    Compensator, LeuvenParams, Level, MaxwellSlip, Mode, Params, RippleTerms, Stribeck,
+    Compensator, LeuvenParams, Level, MaxwellSlip, Mode, Params, PositionForce, RippleTerms,
+    Stribeck,
 };
 use gms_ffi::leuven_rt_status::*;
 
@@ -34,6 +35,7 @@ const INVALID_MODE: i32 = LEUVEN_RT_INVALID_MODE as i32;
 const NOT_FINITE_INPUT: i32 = LEUVEN_RT_NOT_FINITE_INPUT as i32;
 const INCOMPATIBLE_PARAMS: i32 = LEUVEN_RT_INCOMPATIBLE_PARAMS as i32;
 const INVALID_FILE: i32 = LEUVEN_RT_INVALID_FILE as i32;
+const NO_START_POSITION: i32 = LEUVEN_RT_NO_START_POSITION as i32;
 
 fn params(fc: f64, fs: f64, vs: f64, w: [f64; 10], delta: [f64; 10]) -> LeuvenParams<10> {
     let stribeck = Stribeck::new(fc, fs, vs, 2.0).unwrap();
@@ -216,6 +218,13 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("create_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
     ("create_vs_negative", INVALID_PARAMETER, "Vs", 0),
     ("create_sigma2_nan", INVALID_PARAMETER, "sigma2", 0),
+    (
+        "create_sigma2_neg_negative",
+        INVALID_PARAMETER,
+        "sigma2_neg",
+        0,
+    ),
+    ("create_sigma2_neg_nan", INVALID_PARAMETER, "sigma2_neg", 0),
     ("create_w3_negative", INVALID_PARAMETER, "W", 3),
     ("create_elements_too_weak", INVALID_PARAMETER, "W", 0),
     ("create_w_null", INVALID_POINTER, "-", 0),
@@ -245,7 +254,7 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("json_missing_key", INVALID_FILE, "-", 0),
     ("json_fs_below_fc", INVALID_PARAMETER, "Fs", 0),
     ("json_elements_too_weak", INVALID_PARAMETER, "W", 0),
-    ("json_w_without_delta", INVALID_PARAMETER, "Delta", 0),
+    ("json_w_without_delta", INVALID_FILE, "-", 0),
     ("json_not_json", INVALID_FILE, "-", 0),
     ("json_null", INVALID_POINTER, "-", 0),
     ("json_bad_mode", INVALID_MODE, "-", 0),
@@ -274,12 +283,14 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("level_null_ripples", INVALID_POINTER, "-", 0),
     ("level_null", INVALID_POINTER, "-", 0),
     ("level_null_handle", INVALID_POINTER, "-", 0),
-    ("model_feedforward", OK, "-", 0),
+    ("model_feedforward", NO_START_POSITION, "x", 0),
+    ("model_feedforward_at_nan", NOT_FINITE_INPUT, "x", 0),
+    ("model_feedforward_at", OK, "-", 0),
     ("set_position_nan", NOT_FINITE_INPUT, "-", 0),
     ("set_position_null", INVALID_POINTER, "-", 0),
     ("set_position_ok", OK, "-", 0),
     ("model_no_level", OK, "-", 0),
-    ("model_version_2", INVALID_FILE, "-", 0),
+    ("model_version_3", INVALID_FILE, "-", 0),
     ("model_version_missing", INVALID_FILE, "-", 0),
     ("model_format_other", INVALID_FILE, "-", 0),
     ("model_unknown_key", INVALID_FILE, "-", 0),
@@ -301,6 +312,31 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("model_level_too_deep", INVALID_PARAMETER, "level", 0),
     ("model_level_unknown", INVALID_FILE, "-", 0),
     ("model_file_ok", OK, "-", 0),
+    ("model_file_at", OK, "-", 0),
+    ("terms_create", OK, "-", 0),
+    ("level_without_start", NO_START_POSITION, "x", 0),
+    ("force_without_start", NO_START_POSITION, "x", 0),
+    ("terms_start", OK, "-", 0),
+    ("level_with_start", OK, "-", 0),
+    ("force_with_start", OK, "-", 0),
+    ("trajectory_create", OK, "-", 0),
+    ("trajectory_nan_x", NOT_FINITE_INPUT, "-", 0),
+    ("trajectory_inf_v", NOT_FINITE_INPUT, "-", 0),
+    ("trajectory_null_handle", INVALID_POINTER, "-", 0),
+    ("trajectory_null_force", INVALID_POINTER, "-", 0),
+    ("force_period_unresolved", INVALID_PARAMETER, "period", 0),
+    ("level_period_1e-300", INVALID_PARAMETER, "period", 0),
+    (
+        "level_half_stroke_1e-300",
+        INVALID_PARAMETER,
+        "half_stroke",
+        0,
+    ),
+    ("level_middle_1e308", INVALID_PARAMETER, "middle", 0),
+    ("force_trend_nan", INVALID_PARAMETER, "trend", 0),
+    ("force_null", INVALID_POINTER, "-", 0),
+    ("force_null_handle", INVALID_POINTER, "-", 0),
+    ("json_sigma2_neg_zero", OK, "-", 0),
 ];
 
 /// Samples of the level part of the C program.
@@ -328,23 +364,72 @@ fn screw_level() -> Level {
     .unwrap()
 }
 
+/// The C program's trajectory of the level part: (position, velocity) of sample `k`.
+fn level_trajectory(k: i32) -> (f64, f64) {
+    let k = f64::from(k);
+    (0.003 * (0.01 * k).sin() + 1e-5 * k, 8e-3 * (0.01 * k).cos())
+}
+
 /// The C program's level forces, computed with gms-core: (observer, feedforward).
 fn level_forces() -> (Vec<f64>, Vec<f64>) {
     let mut observer = Compensator::new(nominal(), DT, Mode::Observer)
-        .unwrap()
-        .with_level(screw_level());
+        .and_then(|c| c.with_level(screw_level()))
+        .unwrap();
     let mut feedforward = Compensator::new(nominal(), DT, Mode::Feedforward)
-        .unwrap()
-        .with_level(screw_level());
-    feedforward.set_position(-0.0042).unwrap();
+        .and_then(|c| c.with_start_position(-0.0042))
+        .and_then(|c| c.with_level(screw_level()))
+        .unwrap();
     (0..LEVEL_SAMPLES)
         .map(|k| {
-            let k = f64::from(k);
-            let x = 0.003 * (0.01 * k).sin() + 1e-5 * k;
-            let v = 8e-3 * (0.01 * k).cos();
+            let (x, v) = level_trajectory(k);
             (observer.step(x).unwrap(), feedforward.step(v).unwrap())
         })
         .unzip()
+}
+
+/// The C program's cogging force.
+fn cogging() -> PositionForce {
+    PositionForce::new(
+        0.001,
+        0.02,
+        [0.8, -0.3],
+        &[RippleTerms {
+            period: 0.0025,
+            cos: &[0.4, 0.1],
+            sin: &[-0.3, 0.05],
+        }],
+    )
+    .unwrap()
+}
+
+/// The C program's forces of the terms part, computed with gms-core: the feedforward run with
+/// `sigma2_neg` = 0.9, the level and the position force; the trajectory run; and the run of
+/// the parameter file with `sigma2_neg` = 0.
+fn terms_forces() -> [Vec<f64>; 3] {
+    let asymmetric = nominal().with_sigma2_neg(0.9).unwrap();
+    let placed = |start: f64| {
+        Compensator::new(asymmetric, DT, Mode::Feedforward)
+            .and_then(|c| c.with_start_position(start))
+            .and_then(|c| c.with_level(screw_level()))
+            .and_then(|c| c.with_position_force(cogging()))
+            .unwrap()
+    };
+    let mut feedforward = placed(-0.0042);
+    let mut trajectory = placed(level_trajectory(0).0);
+    let mut zero = Compensator::new(
+        nominal().with_sigma2_neg(0.0).unwrap(),
+        DT,
+        Mode::Feedforward,
+    )
+    .unwrap();
+    let mut out = [Vec::new(), Vec::new(), Vec::new()];
+    for k in 0..LEVEL_SAMPLES {
+        let (x, v) = level_trajectory(k);
+        out[0].push(feedforward.step(v).unwrap());
+        out[1].push(trajectory.step_trajectory(1.1 * v, x).unwrap());
+        out[2].push(zero.step(v).unwrap());
+    }
+    out
 }
 
 #[test]
@@ -411,9 +496,15 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
         "model_format_named",
         "model_unknown_key_named",
         "model_file_equals_text",
+        "model_feedforward_named",
+        "model_file_at_equals_text",
+        "trajectory_held",
+        "force_period_named",
+        "terms_untouched_after_rejections",
     ] {
         assert_eq!(printed.values[named], 1.0, "{named}");
     }
+    assert_eq!(printed.values["trajectory_null_handle_force"], 0.0);
     // The level through the C ABI is gms-core's (C's sin and cos make the trajectory, hence
     // the loop's tolerance).
     let (observer, feedforward) = level_forces();
@@ -429,4 +520,35 @@ fn c_control_loop_matches_rust_and_bad_input_gets_a_status() {
         scaled += usize::from(observer[k] != 0.0);
     }
     assert!(scaled > 250, "the level run must produce forces");
+    terms_match_rust(&printed);
+}
+
+/// The viscous asymmetry, the position force and the trajectory steps through the C ABI are
+/// gms-core's.
+fn terms_match_rust(printed: &Printed) {
+    let [feedforward, trajectory, zero] = terms_forces();
+    // The comparison sees sigma2_neg: without it the run of the file differs backwards.
+    let mut plain = Compensator::new(nominal(), DT, Mode::Feedforward).unwrap();
+    let (mut backward, mut asymmetric) = (0, 0);
+    for k in 0..feedforward.len() {
+        for (name, rust) in [
+            ("terms_feedforward", feedforward[k]),
+            ("terms_trajectory", trajectory[k]),
+            ("sigma2_neg_zero", zero[k]),
+        ] {
+            let c = printed.values[&format!("{name}_{k}")];
+            assert!(
+                (c - rust).abs() <= 1e-12 * rust.abs().max(1e-6),
+                "{name} sample {k}: C {c} vs Rust {rust}"
+            );
+        }
+        let (_, v) = level_trajectory(i32::try_from(k).unwrap());
+        let symmetric = plain.step(v).unwrap();
+        backward += usize::from(v < 0.0);
+        asymmetric += usize::from(v < 0.0 && (zero[k] - symmetric + 0.4 * v).abs() < 1e-12);
+    }
+    assert!(
+        backward > 100 && asymmetric == backward,
+        "{backward} backward samples, {asymmetric} without the viscous force"
+    );
 }

@@ -3,12 +3,12 @@
 //! between (the control-loop fast path).
 
 use gms_core::Mode;
-use gms_dyn::{Compensator, Level};
+use gms_dyn::{Compensator, Terms};
 use pyo3::prelude::*;
 
 use crate::convert::real;
 use crate::errors::{lend, lend_mut, raise, raise_as, Class, Kind, Refusal};
-use crate::level::level_of;
+use crate::level::{optional_level, optional_position_force};
 use crate::params::{parameter_set, PythonParams};
 
 fn parse_mode(mode: &str) -> PyResult<Mode> {
@@ -35,22 +35,28 @@ pub struct CompensatorEngine {
 #[pymethods]
 impl CompensatorEngine {
     #[new]
-    #[pyo3(signature = (params, dt, mode, level = None))]
+    #[pyo3(signature = (params, dt, mode, level = None, position_force = None, x = None))]
     fn new(
         params: &Bound<'_, PyAny>,
         dt: &Bound<'_, PyAny>,
         mode: &str,
         level: Option<&Bound<'_, PyAny>>,
+        position_force: Option<&Bound<'_, PyAny>>,
+        x: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let dt = real(dt, "dt")?;
         let mode = parse_mode(mode)?;
         let set = parameter_set(params)?;
-        let level = match level {
-            Some(level) if !level.is_none() => level_of(level)?,
-            _ => Level::none(),
+        let terms = Terms {
+            start: x
+                .filter(|x| !x.is_none())
+                .map(|x| real(x, "x"))
+                .transpose()?,
+            level: optional_level(level)?,
+            position_force: optional_position_force(position_force)?,
         };
         Ok(Self {
-            compensator: Compensator::with_level(&set, dt, mode, &level).map_err(raise)?,
+            compensator: Compensator::with_terms(&set, dt, mode, &terms).map_err(raise)?,
             params: params.clone().unbind(),
         })
     }
@@ -65,6 +71,27 @@ impl CompensatorEngine {
         };
         let value = real(input, name)?;
         this.compensator.step(value).map_err(|error| {
+            raise_as(
+                Class::Input,
+                error.into(),
+                format!("{error}; the state and output are unchanged"),
+            )
+        })
+    }
+
+    /// The friction force for one sample of a planned trajectory: the desired velocity `v`
+    /// drives the model, the desired position `x` places the level and the position force (and
+    /// becomes the feedforward `position`; in observer mode, the previous position of the next
+    /// `step`). A non-finite `v` or `x` raises `InputError` and changes nothing.
+    fn step_trajectory(
+        slf: &Bound<'_, Self>,
+        v: &Bound<'_, PyAny>,
+        x: &Bound<'_, PyAny>,
+    ) -> PyResult<f64> {
+        // Converted before the borrow: no Python code (a `__float__`) runs while it is held.
+        let (v, x) = (real(v, "v")?, real(x, "x")?);
+        let mut this = lend_mut(slf)?;
+        this.compensator.step_trajectory(v, x).map_err(|error| {
             raise_as(
                 Class::Input,
                 error.into(),
@@ -88,8 +115,8 @@ impl CompensatorEngine {
         Ok(())
     }
 
-    /// Sets the position from which feedforward mode integrates the desired velocity to
-    /// evaluate the level (observer mode takes it from its input).
+    /// Sets the position from which feedforward mode integrates the desired velocity to place
+    /// the level and the position force (observer mode takes it from its input).
     fn set_position(slf: &Bound<'_, Self>, x: &Bound<'_, PyAny>) -> PyResult<()> {
         let mut this = lend_mut(slf)?;
         let x = real(x, "x")?;
@@ -102,9 +129,10 @@ impl CompensatorEngine {
         })
     }
 
-    /// The feedforward position: the start position plus the desired velocities integrated since.
+    /// The feedforward position: the start position, then the desired positions stepped or
+    /// the desired velocities integrated since; None until a start position is given.
     #[getter]
-    fn position(slf: &Bound<'_, Self>) -> PyResult<f64> {
+    fn position(slf: &Bound<'_, Self>) -> PyResult<Option<f64>> {
         Ok(lend(slf)?.compensator.position())
     }
 

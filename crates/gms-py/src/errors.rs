@@ -7,7 +7,8 @@
 //! kind="missing_column", field="f")`). The class attributes are the defaults (None), and
 //! `__init__` is `object.__init__`, which accepts the arguments `__new__` took (the
 //! `BaseException.__init__` it replaces refuses keywords). Python subclasses (`DataError`,
-//! `OutputError`) inherit both and define neither.
+//! `OutputError`) inherit both and define neither, and so does `ModelFileError`, the
+//! `ParameterError` of the file reader, which adds `line` and `column`.
 
 use gms_dyn::{Details, Error, ErrorClass, Number};
 use pyo3::exceptions::{PyBaseException, PyRuntimeError, PyValueError};
@@ -22,6 +23,9 @@ pub const DATA: [&str; 9] = [
     "kind", "field", "value", "bound", "index", "sample", "channel", "expected", "got",
 ];
 
+/// The attributes `ModelFileError` adds: where in the text a syntax error is (from 1).
+pub const FILE_DATA: [&str; 2] = ["line", "column"];
+
 /// The exception classes the extension defines.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Class {
@@ -33,15 +37,19 @@ pub enum Class {
     Divergence,
     /// `ConcurrentUseError` (a `RuntimeError`).
     ConcurrentUse,
+    /// `ModelFileError` (a `ParameterError`): a model file or parameter file that gms-file
+    /// refuses.
+    ModelFile,
 }
 
 impl Class {
     /// Every class, in the order of `TYPES`.
-    pub const ALL: [Class; 4] = [
+    pub const ALL: [Class; 5] = [
         Class::Parameter,
         Class::Input,
         Class::Divergence,
         Class::ConcurrentUse,
+        Class::ModelFile,
     ];
 
     /// The class's name in `leuven_rt`.
@@ -51,6 +59,7 @@ impl Class {
             Class::Input => "InputError",
             Class::Divergence => "DivergenceError",
             Class::ConcurrentUse => "ConcurrentUseError",
+            Class::ModelFile => "ModelFileError",
         }
     }
 
@@ -60,6 +69,7 @@ impl Class {
             Class::Input => c"leuven_rt.InputError",
             Class::Divergence => c"leuven_rt.DivergenceError",
             Class::ConcurrentUse => c"leuven_rt.ConcurrentUseError",
+            Class::ModelFile => c"leuven_rt.ModelFileError",
         }
     }
 
@@ -77,6 +87,9 @@ impl Class {
             Class::ConcurrentUse => {
                 c"A model, mass system, compensator or online identifier was called while another thread was inside one of its calls (`run` releases the GIL): nothing was changed by this call. Give each thread its own object, or serialise the calls with a lock."
             }
+            Class::ModelFile => {
+                c"A model file or parameter file that the reader refuses (docs/data-and-reports.md#model-file): `kind` names what went wrong (\"not_json\", \"unknown_key\", \"static_below_coulomb\", ...), `field` the key path (\"level.ripples[0].period\") or None, `value` (and the further data of docs/errors.md#error-data) the value of a broken rule, `line` and `column` place a syntax error."
+            }
         }
     }
 
@@ -86,12 +99,14 @@ impl Class {
             Class::Input => 1,
             Class::Divergence => 2,
             Class::ConcurrentUse => 3,
+            Class::ModelFile => 4,
         }
     }
 
     /// The class, made on first use.
     pub fn get(self, py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
-        static TYPES: [PyOnceLock<Py<PyType>>; 4] = [
+        static TYPES: [PyOnceLock<Py<PyType>>; 5] = [
+            PyOnceLock::new(),
             PyOnceLock::new(),
             PyOnceLock::new(),
             PyOnceLock::new(),
@@ -104,15 +119,23 @@ impl Class {
 
     fn make(self, py: Python<'_>) -> PyResult<Py<PyType>> {
         let namespace = PyDict::new(py);
-        namespace.set_item("__new__", wrap_pyfunction!(new_error, py)?)?;
-        namespace.set_item("__init__", py.get_type::<PyAny>().getattr("__init__")?)?;
-        for name in DATA {
-            namespace.set_item(name, py.None())?;
-        }
         let base = match self {
             Class::ConcurrentUse => py.get_type::<PyRuntimeError>(),
+            // A subclass: `__new__`, `__init__` and the data come from ParameterError.
+            Class::ModelFile => Class::Parameter.get(py)?.clone(),
             _ => py.get_type::<PyValueError>(),
         };
+        if self == Class::ModelFile {
+            for name in FILE_DATA {
+                namespace.set_item(name, py.None())?;
+            }
+        } else {
+            namespace.set_item("__new__", wrap_pyfunction!(new_error, py)?)?;
+            namespace.set_item("__init__", py.get_type::<PyAny>().getattr("__init__")?)?;
+            for name in DATA {
+                namespace.set_item(name, py.None())?;
+            }
+        }
         // `namespace` stays alive until the type is made: PyO3 0.30's `new_type` drops the
         // reference it is given before it passes the pointer on, and this one is then the last.
         PyErr::new_type(
@@ -200,10 +223,13 @@ pub enum Kind {
     ConcurrentUse,
 }
 
-/// Every kind the extension raises: gms-core's, gms-dyn's and this layer's own.
+/// Every kind the extension raises: gms-core's, gms-dyn's, gms-fit's, gms-file's and this
+/// layer's own.
 pub fn kinds() -> Vec<&'static str> {
     use strum::VariantNames;
     let mut kinds: Vec<&'static str> = Error::kinds()
+        .chain(gms_fit::Error::KINDS)
+        .chain(gms_file::FileError::KINDS)
         .chain(Kind::VARIANTS.iter().copied())
         .collect();
     kinds.sort_unstable();
@@ -278,7 +304,8 @@ impl Refusal {
         Self::with_kind(class, kind.into(), message)
     }
 
-    fn with_kind(class: Class, kind: &'static str, message: impl Into<String>) -> Self {
+    /// A refusal of `kind` named by another layer (gms-file's).
+    pub fn with_kind(class: Class, kind: &'static str, message: impl Into<String>) -> Self {
         Refusal {
             class,
             message: message.into(),
@@ -302,6 +329,11 @@ impl Refusal {
     /// The limit the value had to reach.
     pub fn bound(self, bound: impl Into<Datum>) -> Self {
         self.datum("bound", bound.into())
+    }
+
+    /// The index of the element or entry at fault, the last index that `field` spells.
+    pub fn index(self, index: usize) -> Self {
+        self.datum("index", index.into())
     }
 
     /// The length, count or shape expected, and what came.
@@ -338,7 +370,16 @@ impl From<Refusal> for PyErr {
 
 /// gms-dyn's error as an exception of `class`, with `message` and the error's data.
 pub fn raise_as(class: Class, error: Error, message: String) -> PyErr {
-    let details = error.details();
+    raise_details(class, error.details(), message)
+}
+
+/// An exception of `class` with `message` and the data `details`.
+fn raise_details(class: Class, details: Details, message: String) -> PyErr {
+    refusal_of(class, details, message).into()
+}
+
+/// A refusal of `class` with `message` and the data `details`, to complete before it is raised.
+pub fn refusal_of(class: Class, details: Details, message: String) -> Refusal {
     let mut refusal = Refusal::with_kind(class, details.kind, message);
     refusal.field = details.field.map(|field| field.to_string());
     let Details {
@@ -367,17 +408,26 @@ pub fn raise_as(class: Class, error: Error, message: String) -> PyErr {
             refusal = refusal.datum(name, count.into());
         }
     }
-    refusal.into()
+    refusal
+}
+
+/// The extension's class for one of gms-dyn's.
+fn class_of(class: ErrorClass) -> Class {
+    match class {
+        ErrorClass::Parameter => Class::Parameter,
+        ErrorClass::Input => Class::Input,
+        ErrorClass::Divergence => Class::Divergence,
+    }
 }
 
 /// The exception of the class the error's kind calls for, with gms-dyn's message and data.
 pub fn raise(error: Error) -> PyErr {
-    let class = match error.class() {
-        ErrorClass::Parameter => Class::Parameter,
-        ErrorClass::Input => Class::Input,
-        ErrorClass::Divergence => Class::Divergence,
-    };
-    raise_as(class, error, error.to_string())
+    raise_as(class_of(error.class()), error, error.to_string())
+}
+
+/// A gms-fit error, with its message and data, in the class its kind calls for.
+pub fn raise_fit(error: gms_fit::Error) -> PyErr {
+    raise_details(class_of(error.class()), error.details(), error.to_string())
 }
 
 /// A refused update, run or prediction of an online identifier, or refused slip responses:

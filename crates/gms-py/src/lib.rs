@@ -1,4 +1,4 @@
-//! `leuven_rt._core`: the thin `PyO3` layer over gms-dyn and gms-core.
+//! `leuven_rt._core`: the thin `PyO3` layer over gms-dyn, gms-fit and gms-core.
 //!
 //! It reads Python arguments into plain Rust values, hands them to gms-dyn (which validates
 //! them, chooses the number of elements and runs the loops, here with the GIL released), and
@@ -11,6 +11,8 @@
 mod compensator;
 mod convert;
 mod errors;
+mod file;
+mod fit;
 mod level;
 mod mechanics;
 mod model;
@@ -34,8 +36,17 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::sensitivities, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::simulate_sets, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_from_object, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_load, m)?)?;
+    m.add_function(wrap_pyfunction!(file::model_file_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(file::parameter_file_to_json, m)?)?;
     m.add_class::<params::CoreParams>()?;
     m.add_class::<level::CoreLevel>()?;
+    m.add_class::<level::CorePositionForce>()?;
     m.add("MAX_RIPPLES", gms_dyn::MAX_RIPPLES)?;
     m.add("MAX_HARMONICS", gms_dyn::MAX_HARMONICS)?;
     m.add_class::<model::Engine>()?;

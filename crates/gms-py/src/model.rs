@@ -12,7 +12,7 @@ use crate::convert::{
     channel_count, parse_scheme, real, same_channels, scheme_name, single_channel, zeros,
 };
 use crate::errors::{lend, lend_mut, raise, Class, Kind, Refusal};
-use crate::level::level_of;
+use crate::level::{optional_level, optional_position_force};
 use crate::params::parameter_set;
 
 /// z, zeta, `last_position` and `has_last_position` of every channel.
@@ -140,23 +140,50 @@ impl Engine {
     }
 
     /// Runs every channel over its row of positions `input`, shape (B, T), with the GIL
-    /// released, the forces scaled by the position-dependent `level`
-    /// (docs/model.md#position-dependent-level).
+    /// released, with the position-dependent `level` and `position_force` (either may be None)
+    /// on the forces (docs/model.md#position-dependent-level).
     fn _run_position_level<'py>(
         slf: &Bound<'py, Self>,
         input: PyReadonlyArray2<'py, f64>,
         dt: f64,
-        level: &Bound<'py, PyAny>,
+        level: Option<&Bound<'py, PyAny>>,
+        position_force: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let py = slf.py();
-        let level = level_of(level)?;
+        let level = optional_level(level)?;
+        let force = optional_position_force(position_force)?;
         let mut this = lend_mut(slf)?;
         let shape = [input.shape()[0], input.shape()[1]];
         same_channels(shape[0], this.bank.channels(), "input", "model")?;
         let input = input.as_slice()?;
         let mut out = zeros(input.len(), "input")?;
         let bank = &mut this.bank;
-        py.detach(|| bank.run_position_level(input, dt, &level, &mut out))
+        py.detach(|| bank.run_position_level(input, dt, &level, &force, &mut out))
+            .map_err(raise)?;
+        PyArray1::from_vec(py, out).reshape(shape)
+    }
+
+    /// Runs every channel over its row of velocities `v`, shape (B, T), with the GIL released,
+    /// the level and the position force placed at the positions `x` (the same shape, checked by
+    /// the Python side).
+    fn _run_level<'py>(
+        slf: &Bound<'py, Self>,
+        v: PyReadonlyArray2<'py, f64>,
+        x: PyReadonlyArray2<'py, f64>,
+        dt: f64,
+        level: Option<&Bound<'py, PyAny>>,
+        position_force: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let py = slf.py();
+        let level = optional_level(level)?;
+        let force = optional_position_force(position_force)?;
+        let mut this = lend_mut(slf)?;
+        let shape = [v.shape()[0], v.shape()[1]];
+        same_channels(shape[0], this.bank.channels(), "v", "model")?;
+        let (v, x) = (v.as_slice()?, x.as_slice()?);
+        let mut out = zeros(v.len(), "v")?;
+        let bank = &mut this.bank;
+        py.detach(|| bank.run_level(v, x, dt, &level, &force, &mut out))
             .map_err(raise)?;
         PyArray1::from_vec(py, out).reshape(shape)
     }

@@ -29,6 +29,7 @@ pub struct GivenParams {
     sigma2: f64,
     fc_neg: f64,
     fs_neg: f64,
+    sigma2_neg: Option<f64>,
     sigma0: Option<f64>,
     w: Option<Vec<f64>>,
     big_delta: Option<Vec<f64>>,
@@ -72,6 +73,7 @@ impl GivenParams {
             sigma2: number("sigma2")?,
             fc_neg: optional("Fc_neg")?.unwrap_or(fc),
             fs_neg: optional("Fs_neg")?.unwrap_or(fs),
+            sigma2_neg: optional("sigma2_neg")?,
             sigma0: optional("sigma0")?,
             w: list("W")?,
             big_delta: list("Delta")?,
@@ -91,6 +93,7 @@ impl GivenParams {
             sigma2: self.sigma2,
             fc_neg: self.fc_neg,
             fs_neg: self.fs_neg,
+            sigma2_neg: self.sigma2_neg,
             sigma0: self.sigma0,
             elements: given.then(|| RawElements {
                 w: self.w.as_deref().unwrap_or_default(),
@@ -150,8 +153,8 @@ pub struct CoreParams {
 #[pymethods]
 impl CoreParams {
     /// Validates any object with the attributes of `leuven_rt.Params` (`Fc, Fs, Vs, delta, n,
-    /// sigma1, sigma2, Fc_neg, Fs_neg, sigma0, W, Delta`); raises `ParameterError` naming the
-    /// first rule broken.
+    /// sigma1, sigma2, Fc_neg, Fs_neg, sigma2_neg, sigma0, W, Delta`); raises `ParameterError`
+    /// naming the first rule broken.
     #[new]
     fn new(params: &Bound<'_, PyAny>) -> PyResult<Self> {
         Ok(Self {

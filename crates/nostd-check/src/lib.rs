@@ -6,8 +6,8 @@
 #![no_std]
 
 use gms_core::{
-    Compensator, LeuvenParams, Level, Linear, LuGreParams, MaxwellSlip, Mode, RippleTerms, Scheme,
-    Stribeck,
+    Compensator, LeuvenParams, Level, Linear, LuGreParams, MaxwellSlip, Mode, PositionForce,
+    RippleTerms, Scheme, Stribeck,
 };
 
 #[panic_handler]
@@ -30,7 +30,9 @@ pub extern "C" fn nostd_check_run(dt: f64) -> f64 {
     ) else {
         return f64::NAN;
     };
-    let Ok(leuven) = LeuvenParams::new(stribeck, 2.0, 10.0, 0.4, elements) else {
+    let Ok(leuven) =
+        LeuvenParams::new(stribeck, 2.0, 10.0, 0.4, elements).and_then(|p| p.with_sigma2_neg(0.6))
+    else {
         return f64::NAN;
     };
     let Ok(spring) = Linear::new(1e5) else {
@@ -65,6 +67,10 @@ pub extern "C" fn nostd_check_run(dt: f64) -> f64 {
     let Ok(level) = Level::new(0.0, 0.01, [0.05, -0.02], &[ripple]) else {
         return f64::NAN;
     };
+    // A position force of the same shape, in newtons.
+    let Ok(force) = PositionForce::new(0.0, 0.01, [0.5, 0.0], &[ripple]) else {
+        return f64::NAN;
+    };
     if leuven
         .simulate_position_level(
             &mut leuven.relaxed_state(),
@@ -72,26 +78,45 @@ pub extern "C" fn nostd_check_run(dt: f64) -> f64 {
             dt,
             Scheme::Implicit,
             &level,
+            &force,
             &mut forces,
         )
         .is_ok()
     {
         total += forces.iter().sum::<f64>();
     }
-    // The compensator in both modes, with a level and a parameter swap between two samples.
+    // Velocity input with positions for the two terms.
+    if leuven
+        .simulate_level(
+            &mut leuven.relaxed_state(),
+            &velocities,
+            &velocities,
+            dt,
+            Scheme::Implicit,
+            &level,
+            &force,
+            &mut forces,
+        )
+        .is_ok()
+    {
+        total += forces.iter().sum::<f64>();
+    }
+    // The compensator in both modes, with the terms, a parameter swap between two samples and
+    // trajectory steps.
     for mode in [Mode::Feedforward, Mode::Observer] {
-        let Ok(compensator) = Compensator::new(leuven, dt, mode) else {
+        let Ok(mut compensator) = Compensator::new(leuven, dt, mode)
+            .and_then(|c| c.with_start_position(1e-3))
+            .and_then(|c| c.with_level(level))
+            .and_then(|c| c.with_position_force(force))
+        else {
             return f64::NAN;
         };
-        let mut compensator = compensator.with_level(level);
-        if compensator.set_position(1e-3).is_err() {
-            return f64::NAN;
-        }
         for (k, &v) in velocities.iter().enumerate() {
             if k == 3 {
                 compensator.set_params(leuven);
             }
             total += compensator.step(v).unwrap_or(f64::NAN);
+            total += compensator.step_trajectory(v, 1e-3 + v).unwrap_or(f64::NAN);
         }
     }
     total

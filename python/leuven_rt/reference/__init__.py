@@ -2,7 +2,8 @@
 nothing traded for speed, that the tests hold the Rust core to.
 
 - this package's namespace and :mod:`.leuven`: the friction step (:func:`simulate`,
-  :func:`simulate_position`, :func:`step`, :class:`MaxwellSlip`, ...);
+  :func:`simulate_position`, :func:`step`, :class:`MaxwellSlip`, ...) and the position-dependent
+  terms (:func:`position_series`);
 - :mod:`.mechanics`: the force-driven mass (:func:`leuven_rt.reference.mechanics.simulate_mass`);
 - :mod:`.online`: the regressors of the online identifier;
 - :mod:`.original_leuven`: the original Leuven model with its stacks of extrema, for comparison.
@@ -25,10 +26,12 @@ from .leuven import (
     hysteresis_of,
     implicit_root,
     phi,
+    position_series,
     simulate,
     simulate_position,
     step,
     stribeck_level,
+    viscous_coefficient,
 )
 
 __all__ = [
@@ -43,8 +46,10 @@ __all__ = [
     "online",
     "original_leuven",
     "phi",
+    "position_series",
     "simulate",
     "simulate_position",
     "step",
     "stribeck_level",
+    "viscous_coefficient",
 ]

@@ -15,7 +15,14 @@ velocity vₖ held over the step of length dt:
 - f(y, v) = v − |v|·φ(Fh(y)/g(v)), the state equation dz/dt;
 - implicit: z⁺ is the root of R(y) = (y − z) − dt·v + dt·|v|·φ(Fh(y)/g(v));
   explicit: z⁺ = z + dt·f(z, v);
-- output Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2·vₖ, then the elements are committed at z⁺.
+- output Fₖ = Fh(z⁺) + σ1·(z⁺ − z)/dt + σ2(vₖ)·vₖ, with σ2(v) = sigma2_neg for v < 0 and sigma2
+  otherwise, then the elements are committed at z⁺.
+
+The position-dependent terms (docs/model.md#position-dependent-level) are written here too, as
+the equations write them (:func:`position_series`, with the phase 2πk·x/P unreduced): this
+module is the oracle, so it keeps its own formula rather than calling gms-core's, which reduces
+the phase to one period and builds the harmonics by recurrence. The two agree to 1e-12 of the
+amplitudes while |x/P| stays below about 20 (docs/model.md#position-dependent-level).
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ from scipy.optimize import brentq
 from .._checks import as_signal, check_dt, check_scheme, require_finite
 from .._typing import FloatArray
 from ..errors import DivergenceError, InputError
-from ..level import PositionLevel
+from ..level import PositionForce, PositionLevel
 from ..params import Params, ParamsLike, as_params
 
 #: Relative tolerance of the root: the smallest that ``brentq`` accepts (4 ulps), which is also
@@ -50,6 +57,11 @@ def _power(a: float, p: float) -> float:
 def phi(u: float, n: float) -> float:
     """φ(u) = sgn(u)·|u|ⁿ."""
     return math.copysign(_power(abs(u), n), u)
+
+
+def viscous_coefficient(params: Params, v: float) -> float:
+    """σ2(v): ``sigma2_neg`` (``sigma2`` when not given) for v < 0, ``sigma2`` otherwise."""
+    return params.sigma2_negative if v < 0 else params.sigma2
 
 
 def stribeck_level(params: Params, v: float) -> float:
@@ -221,7 +233,8 @@ def step(
     g = stribeck_level(params, v)
     next_z = implicit_root if scheme == "implicit" else explicit_point
     z_next = next_z(hysteresis, zeta, z, v, dt, g, params.n)
-    force = hysteresis.force(zeta, z_next) + params.sigma1 * (z_next - z) / dt + params.sigma2 * v
+    viscous = viscous_coefficient(params, v) * v
+    force = hysteresis.force(zeta, z_next) + params.sigma1 * (z_next - z) / dt + viscous
     if not (math.isfinite(z_next) and math.isfinite(force)):
         raise DivergenceError(
             f"the explicit step diverged at sample {sample}: dt is too large for the stiffness; "
@@ -243,19 +256,81 @@ def _run_channel(params: Params, v: FloatArray, dt: float, scheme: str) -> Float
     return out
 
 
-def simulate(params: ParamsLike, v: ArrayLike, dt: float, scheme: str = "implicit") -> FloatArray:
+def position_series(series: PositionLevel | PositionForce, x: ArrayLike) -> FloatArray:
+    """r(x) of ``series`` (a level's departure from 1, or a position force) at every sample of
+    ``x``, as docs/model.md#position-dependent-level writes it:
+    t1·p + t2·(1.5·p² − 0.5) + Σ_r Σ_k (c_rk·cos(k·2π·x/P_r) + s_rk·sin(k·2π·x/P_r)),
+    p = clip((x − middle)/half_stroke, −1, 1)."""
+    position = np.asarray(x, dtype=float)
+    p = np.clip((position - series.middle) / series.half_stroke, -1.0, 1.0)
+    out: FloatArray = series.trend[0] * p + series.trend[1] * (1.5 * p * p - 0.5)
+    for ripple in series.ripples:
+        phase = 2.0 * np.pi * position / ripple.period
+        for k, (c, s) in enumerate(zip(ripple.cos, ripple.sin, strict=True), start=1):
+            out = out + c * np.cos(k * phase) + s * np.sin(k * phase)
+    return out
+
+
+def _with_terms(
+    params: Params,
+    plain: FloatArray,
+    x: FloatArray,
+    v: FloatArray,
+    level: PositionLevel | None,
+    position_force: PositionForce | None,
+) -> FloatArray:
+    """The forces ``plain`` at positions ``x`` and velocities ``v`` with the level and the
+    position force: factor(x)·(F − σ2(v)·v) + σ2(v)·v + r(x)."""
+    out = plain
+    if level is not None:
+        viscous = np.where(v < 0, params.sigma2_negative, params.sigma2) * v
+        out = (1.0 + position_series(level, x)) * (out - viscous) + viscous
+    if position_force is not None:
+        out = out + position_series(position_force, x)
+    return out
+
+
+def simulate(
+    params: ParamsLike,
+    v: ArrayLike,
+    dt: float,
+    scheme: str = "implicit",
+    *,
+    x: ArrayLike | None = None,
+    level: PositionLevel | None = None,
+    position_force: PositionForce | None = None,
+) -> FloatArray:
     """Friction force for velocity input ``v`` held over each step of length ``dt``.
 
     ``v`` has shape (T,) or (B, T): B channels with the same parameters, each starting relaxed.
-    Returns the force with the shape of ``v``. Same contract and errors as
-    :func:`leuven_rt.simulate`, computed slowly and plainly.
+    Returns the force with the shape of ``v``. With a ``level`` or a ``position_force`` the
+    positions ``x`` (the shape of ``v``) place them, as in :func:`leuven_rt.simulate`. Same
+    contract and errors as :func:`leuven_rt.simulate`, computed slowly and plainly.
     """
     params = as_params(params)
     array, one_dimensional = as_signal(v, "v")
     require_finite(array, "v", one_dimensional)
     dt = check_dt(dt)
     scheme = check_scheme(scheme)
+    if (x is None) != (level is None and position_force is None):
+        raise InputError(
+            "`x` places a `level` or a `position_force`: give `x` with one of them, or neither",
+            kind="missing" if x is None else "not_applicable",
+            field="x",
+        )
     out = np.stack([_run_channel(params, row, dt, scheme) for row in array])
+    if x is not None:
+        positions, _ = as_signal(x, "x")
+        if positions.shape != array.shape:
+            raise InputError(
+                f"`x` must have the shape of `v`, {array.shape}, got {positions.shape}",
+                kind="shape",
+                field="x",
+                expected=array.shape,
+                got=positions.shape,
+            )
+        require_finite(positions, "x", one_dimensional)
+        out = _with_terms(params, out, positions, array, level, position_force)
     return out[0] if one_dimensional else out
 
 
@@ -266,12 +341,14 @@ def simulate_position(
     scheme: str = "implicit",
     *,
     level: PositionLevel | None = None,
+    position_force: PositionForce | None = None,
 ) -> FloatArray:
     """Friction force for position input ``x``: vₖ = (xₖ − xₖ₋₁)/dt, and v = 0 on the first sample.
 
-    With a position-dependent ``level`` (docs/model.md#position-dependent-level) the contact part
-    is scaled: Fₖ = factor(xₖ)·(Fh(z⁺) + σ1·(z⁺ − z)/dt) + σ2·vₖ, with factor as
-    :meth:`PositionLevel.factor` writes it (the phase 2πk·x/P unreduced).
+    With a position-dependent ``level`` and a ``position_force``
+    (docs/model.md#position-dependent-level) the contact part is scaled and the force added:
+    Fₖ = factor(xₖ)·(Fh(z⁺) + σ1·(z⁺ − z)/dt) + σ2(vₖ)·vₖ + r(xₖ), with factor = 1 + r of the
+    level and :func:`position_series` for both (the phase 2πk·x/P unreduced).
     """
     params = as_params(params)
     array, one_dimensional = as_signal(x, "x")
@@ -294,7 +371,5 @@ def simulate_position(
             channel=None if one_dimensional else channel,
         )
     out = np.stack([_run_channel(params, row, dt, scheme) for row in v])
-    if level is not None:
-        viscous = params.sigma2 * v
-        out = level.factor(array) * (out - viscous) + viscous
+    out = _with_terms(params, out, array, v, level, position_force)
     return out[0] if one_dimensional else out

@@ -5,13 +5,15 @@ Per sample k, with (x, v, a, z, ζ) at the start of the step and u held over it:
 
 - ``implicit`` (backward Euler on x, v and z): the new velocity w and the new deflection y solve
 
-      m·(w − v)/dt = u + k·(a⁺ − x − dt·w) − [Fh(y) + σ1·(y − z)/dt + σ2·w],
+      m·(w − v)/dt = u + k·(a⁺ − x − dt·w) − [Fh(y) + σ1·(y − z)/dt + σ2(w)·w],
       y − z = dt·f(y, w),  f(y, w) = w − |w|·φ(Fh(y)/g(w)),
 
-  with Fh the trial from ζ at step start; then x⁺ = x + dt·w, v⁺ = w, and the output is the
-  friction force Fₖ = Fh(y) + σ1·(y − z)/dt + σ2·w. The first equation gives w as an affine
-  function of y, so the pair is one scalar equation in y (:func:`implicit_mass_step`), solved here
-  with scipy's ``brentq`` (the Rust core uses its own bracketed search).
+  with Fh the trial from ζ at step start and σ2(w) = sigma2_neg for w < 0, sigma2 otherwise; then
+  x⁺ = x + dt·w, v⁺ = w, and the output is the friction force Fₖ = Fh(y) + σ1·(y − z)/dt + σ2(w)·w.
+  The first equation gives w as an affine function of y on each side of w = 0 (σ2(w)·w is
+  increasing and 0 at 0, so the side is the sign of the solution with sigma2), so the pair is one
+  scalar equation in y (:func:`implicit_mass_step`), solved here with scipy's ``brentq`` (the
+  Rust core uses its own bracketed search).
 - ``explicit``: the friction's explicit step with v held, then v⁺ = v + dt·(u + k·(a − x) − Fₖ)/m
   and x⁺ = x + dt·v.
 
@@ -35,7 +37,7 @@ from .._typing import FloatArray
 from ..errors import DivergenceError
 from ..mechanics import MassTrajectory
 from ..params import Params, ParamsLike, as_params
-from .leuven import hysteresis_of, phi, step, stribeck_level
+from .leuven import hysteresis_of, phi, step, stribeck_level, viscous_coefficient
 
 #: Relative tolerance of the root (4 ulps, what brentq accepts and the Rust solver stops at).
 RTOL = 4.0 * np.finfo(np.float64).eps
@@ -59,17 +61,24 @@ def implicit_mass_step(
     net: float,
     stiffness_s: float,
     sigma1: float,
+    backward: tuple[float, float] | None = None,
 ) -> tuple[float, float]:
     """The root (y, w) of the implicit mass step, given Fh(y) = ``hysteresis(y)`` and the state
     equation dz/dt = ``rate(y, w)``.
 
     ``net`` = u + k·(a⁺ − x − dt·v) − σ2·v and ``stiffness_s`` = S = m/dt + k·dt + σ2, so that
-    w(y) = v + (net − Fh(y) − σ1·(y − z)/dt)/S. The bracket starts from z and z − R(z) and is
-    doubled until R(y) = (y − z) − dt·rate(y, w(y)) changes sign (it does: R → ±∞ as y → ±∞).
+    w(y) = v + (net − Fh(y) − σ1·(y − z)/dt)/S; where that w is negative and ``backward`` gives
+    (net, S) with sigma2_neg in place of sigma2, w is theirs. The bracket starts from z and
+    z − R(z) and is doubled until R(y) = (y − z) − dt·rate(y, w(y)) changes sign (it does: R → ±∞
+    as y → ±∞).
     """
 
     def velocity(y: float) -> float:
-        return v + (net - hysteresis(y) - sigma1 * (y - z) / dt) / stiffness_s
+        force = hysteresis(y)
+        w = v + (net - force - sigma1 * (y - z) / dt) / stiffness_s
+        if w < 0.0 and backward is not None:
+            w = v + (backward[0] - force - sigma1 * (y - z) / dt) / backward[1]
+        return w
 
     def residual(y: float) -> float:
         return (y - z) - dt * rate(y, velocity(y))
@@ -117,7 +126,6 @@ def _run_channel(
     for index, uk in enumerate(u.tolist()):
         anchor_next = anchor + dt * speed
         if scheme == "implicit":
-            stiffness_s = m / dt + k * dt + params.sigma2
 
             def trial(y: float) -> float:
                 return hysteresis.force(zeta, y)
@@ -125,9 +133,12 @@ def _run_channel(
             def rate(y: float, w: float) -> float:
                 return w - abs(w) * phi(trial(y) / stribeck_level(params, w), params.n)
 
-            net = uk + k * (anchor_next - x - dt * v) - params.sigma2 * v
-            y, w = implicit_mass_step(trial, rate, z, v, dt, net, stiffness_s, params.sigma1)
-            force = trial(y) + params.sigma1 * (y - z) / dt + params.sigma2 * w
+            drive = uk + k * (anchor_next - x - dt * v)
+            net, stiffness_s = drive - params.sigma2 * v, m / dt + k * dt + params.sigma2
+            sigma2_neg = params.sigma2_negative
+            backward = (drive - sigma2_neg * v, m / dt + k * dt + sigma2_neg)
+            y, w = implicit_mass_step(trial, rate, z, v, dt, net, stiffness_s, params.sigma1, backward)
+            force = trial(y) + params.sigma1 * (y - z) / dt + viscous_coefficient(params, w) * w
             hysteresis.commit(zeta, y)
             z, x, v = y, x + dt * w, w
         else:

@@ -45,7 +45,7 @@ from .._checks import as_signal, check_dt, require_finite
 from .._typing import FloatArray
 from ..errors import InputError, ParameterError, StackOverflowError, shown
 from ..params import ParamsLike, as_params
-from .leuven import phi, stribeck_level
+from .leuven import phi, stribeck_level, viscous_coefficient
 from .mechanics import implicit_mass_step
 
 __all__ = [
@@ -281,7 +281,7 @@ class OriginalSample:
 
 class OriginalLeuven:
     """The original Leuven model with friction parameters ``params`` (Fc, Fs, Vs, delta, n,
-    sigma1, sigma2 are used; Fc_neg/Fs_neg too), transition curve ``curve`` (default: the
+    sigma1, sigma2 are used; Fc_neg/Fs_neg/sigma2_neg too), transition curve ``curve`` (default: the
     Masing curve of the params' Maxwell-slip bank) and stacks of ``depth`` extrema each."""
 
     def __init__(self, params: ParamsLike, depth: int, curve: TransitionCurve | None = None) -> None:
@@ -375,7 +375,8 @@ class OriginalLeuven:
             else:
                 y = float(brentq(residual, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps))
         force_h = self.hysteresis._force(y)
-        friction = force_h + self.params.sigma1 * (y - z) / dt + self.params.sigma2 * v
+        viscous = viscous_coefficient(self.params, v) * v
+        friction = force_h + self.params.sigma1 * (y - z) / dt + viscous
         force_h = self._commit(y)
         return OriginalSample(friction, force_h, self.stacks.size)
 
@@ -421,18 +422,19 @@ class OriginalLeuvenMass:
         model, p = self.model, self.model.params
         m, k = self.mass, self.stiffness
         anchor = self.anchor + dt * self.drive_speed
-        net = u + k * (anchor - self.x - dt * self.v) - p.sigma2 * self.v
-        stiffness_s = m / dt + k * dt + p.sigma2
+        drive = u + k * (anchor - self.x - dt * self.v)
+        net, stiffness_s = drive - p.sigma2 * self.v, m / dt + k * dt + p.sigma2
+        backward = (drive - p.sigma2_negative * self.v, m / dt + k * dt + p.sigma2_negative)
         # The curve depends on the sign of the new velocity (a reversal starts a new one): solve
         # on the current curve, and on the reversed one if the root says the motion reverses.
         saved = _snapshot(model)
         y, w = implicit_mass_step(model.hysteresis._force, model.rate, model.z, self.v, dt, net,
-                                  stiffness_s, p.sigma1)  # fmt: skip
+                                  stiffness_s, p.sigma1, backward)  # fmt: skip
         direction = model.stacks.direction
         if direction != 0 and w * direction < 0:
             model._reverse_if(w)
             y, w = implicit_mass_step(model.hysteresis._force, model.rate, model.z, self.v, dt, net,
-                                      stiffness_s, p.sigma1)  # fmt: skip
+                                      stiffness_s, p.sigma1, backward)  # fmt: skip
             if w * direction > 0:
                 _restore(model, saved)
                 raise ValueError(f"no consistent direction for the mass step at sample {saved[-1]}")
@@ -444,7 +446,7 @@ class OriginalLeuvenMass:
             raise
         z = model.z
         force_h = model.hysteresis._force(y)
-        friction = force_h + p.sigma1 * (y - z) / dt + p.sigma2 * w
+        friction = force_h + p.sigma1 * (y - z) / dt + viscous_coefficient(p, w) * w
         force_h = model._commit(y)
         self.x, self.v, self.anchor = self.x + dt * w, w, anchor
         return OriginalSample(friction, force_h, model.stacks.size)

@@ -33,7 +33,11 @@ pub const EXTRA_TERM_NAMES: [&str; EXTRA_TERMS] = ["Fc", "sigma2", "offset"];
 ///   the bound on trace(P) stops that direction's covariance from winding up. The sum
 ///   `Fc + ΣWᵢ` and the prediction are well determined either way.
 /// - `sigma2·v`: viscous friction (the paper's σ2). σ1 (micro-viscous) does not enter linearly
-///   with the model's z, and is left out.
+///   with the model's z, and is left out. One σ2 serves both directions, as one `Fc` does: the
+///   identifier fits the symmetric model, whose columns stay separable from a short window of
+///   data. A direction-dependent model (`Fc_neg`, `Fs_neg`, `sigma2_neg`) is identified
+///   offline (docs/effects.md, `asymmetry`); a column min(v, 0) for `sigma2_neg` would be
+///   collinear with `sigma2·v` on any stretch of motion in one direction.
 /// - `offset`: a constant force bias of the measurement. It is separated from `Fc` by motion in
 ///   both directions.
 ///

@@ -3,14 +3,19 @@
 //! Backward Euler on the mass and on the friction state, with the friction velocity held at the
 //! new velocity w (so that x⁺ = x + dt·w, exactly the friction step's contract), is the system
 //!
-//! - momentum: m·(w − v)/dt = u + k·(a⁺ − x − dt·w) − [Fh(y) + σ1·(y − z)/dt + σ2·w],
+//! - momentum: m·(w − v)/dt = u + k·(a⁺ − x − dt·w) − [Fh(y) + σ1·(y − z)/dt + σ2(w)·w],
 //! - friction: y − z = dt·f(y, w),   f(y, w) = w − |w|·φ(Fh(y)/g(w)),
 //!
-//! with Fh the hysteresis trial from the memory at step start. The momentum equation is linear
-//! in w, so w is an affine, decreasing function of Fh(y) and y:
+//! with Fh the hysteresis trial from the memory at step start and σ2(w) = `sigma2_neg` for
+//! w < 0, σ2 otherwise. The momentum equation is linear in w on each side of 0, and its left
+//! side (m/dt + k·dt)·w + σ2(w)·w is increasing and 0 at w = 0, so w has the sign of the
+//! forward solution and is a continuous, decreasing function of Fh(y) and y:
 //!
 //!   w(y) = v + (net − Fh(y) − σ1·(y − z)/dt) / S,   S = m/dt + k·dt + σ2,
 //!   net = u + k·(a⁺ − x − dt·v) − σ2·v,
+//!
+//! with σ2 when that w is ≥ 0, and otherwise the same with `sigma2_neg` (which then gives a
+//! w < 0 too, up to rounding at w ≈ 0 where the viscous force is ≈ 0 either way),
 //!
 //! and the step reduces to the root of R(y) = (y − z) − dt·f(y, w(y)), which costs one
 //! evaluation of Fh and one of g per iterate, with no nested solve.
@@ -36,6 +41,16 @@ const MAX_DOUBLINGS: u32 = 64;
 /// root is not far below the bracket's scale; the bound caps the rest.
 const MAX_ITERATIONS: u32 = 256;
 
+/// The momentum equation of one direction of the new velocity, with that direction's σ2.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Momentum {
+    /// u + k·(a⁺ − x − dt·v) − σ2·v: the force on the mass, except friction's Fh and σ1 terms,
+    /// at w = v.
+    pub net: f64,
+    /// 1/S, S = m/dt + k·dt + σ2.
+    pub inverse_s: f64,
+}
+
 /// Everything of one implicit mass step that does not depend on y.
 pub(super) struct Coupled<'a, H: Hysteresis> {
     pub params: &'a Params<H>,
@@ -45,11 +60,10 @@ pub(super) struct Coupled<'a, H: Hysteresis> {
     /// v at step start.
     pub v: f64,
     pub dt: f64,
-    /// u + k·(a⁺ − x − dt·v) − σ2·v: the force on the mass, except friction's Fh and σ1 terms,
-    /// at w = v.
-    pub net: f64,
-    /// 1/S, S = m/dt + k·dt + σ2.
-    pub inverse_s: f64,
+    /// The momentum equation with σ2, for w ≥ 0.
+    pub forward: Momentum,
+    /// The momentum equation with `sigma2_neg`, for w < 0, when it differs from σ2.
+    pub backward: Option<Momentum>,
 }
 
 /// The solution of the step: new deflection and new velocity.
@@ -65,8 +79,14 @@ impl<H: Hysteresis> Coupled<'_, H> {
     fn evaluate(&self, y: f64) -> (f64, f64) {
         let params = self.params;
         let force = params.hysteresis().force(self.memory, y);
-        let w =
-            self.v + (self.net - force - params.sigma1() * (y - self.z) / self.dt) * self.inverse_s;
+        let micro_viscous = params.sigma1() * (y - self.z) / self.dt;
+        let velocity = |momentum: Momentum| {
+            self.v + (momentum.net - force - micro_viscous) * momentum.inverse_s
+        };
+        let w = match (velocity(self.forward), self.backward) {
+            (w, Some(backward)) if w < 0.0 => velocity(backward),
+            (w, _) => w,
+        };
         let u = force / params.stribeck().g(w);
         let phi = libm::copysign(abs_pow(u, params.n()), u);
         let residual = (y - self.z) - self.dt * w + self.dt * libm::fabs(w) * phi;

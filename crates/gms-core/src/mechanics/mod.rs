@@ -16,8 +16,9 @@
 //! - [`Scheme::Implicit`] (default): backward Euler on the whole state (x, v, z). The new
 //!   velocity w and the friction state's new deflection y solve together
 //!   m·(w − v)/dt = u + k·(a⁺ − x − dt·w) − Ff(y, w) and the friction's backward-Euler equation
-//!   with w held; then x⁺ = x + dt·w. The momentum equation is linear in w, which reduces the
-//!   pair to one scalar root in y, solved with a bracket to a few ulps (see `coupled.rs`).
+//!   with w held; then x⁺ = x + dt·w. The momentum equation is linear in w on each side of
+//!   w = 0 (the viscous force σ2(w)·w takes `sigma2_neg` for w < 0), which reduces the pair to
+//!   one scalar root in y, solved with a bracket to a few ulps (see `coupled.rs`).
 //! - [`Scheme::Explicit`]: the friction's forward-Euler step with the current velocity held,
 //!   then v⁺ = v + dt·(u + k·(a − x) − Ff)/m and x⁺ = x + dt·v. Kept for comparison.
 //!
@@ -44,7 +45,7 @@ use crate::checks::{all_finite, finite, non_negative, positive};
 use crate::error::{Error, Field};
 use crate::hysteresis::Hysteresis;
 use crate::model::{Params, Scheme, State};
-use coupled::Coupled;
+use coupled::{Coupled, Momentum};
 
 /// The spring between the mass and its far end a(t) = a₀ + `drive_speed`·t.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -236,15 +237,21 @@ impl<H: Hysteresis> MassSystem<H> {
         let mut friction_state = state.friction;
         let (force, v_next, x_next) = match scheme {
             Scheme::Implicit => {
-                let sigma2 = self.friction.sigma2();
+                // The momentum equation for each sign of the new velocity w, with the σ2 of that
+                // direction (coupled.rs); one form when both directions have the same σ2.
+                let momentum = |sigma2: f64| Momentum {
+                    net: u + k * (anchor - state.x - dt * state.v) - sigma2 * state.v,
+                    inverse_s: 1.0 / (m / dt + k * dt + sigma2),
+                };
+                let (sigma2, sigma2_neg) = (self.friction.sigma2(), self.friction.sigma2_neg());
                 let coupled = Coupled {
                     params: &self.friction,
                     memory: &state.friction.memory,
                     z: state.friction.z,
                     v: state.v,
                     dt,
-                    net: u + k * (anchor - state.x - dt * state.v) - sigma2 * state.v,
-                    inverse_s: 1.0 / (m / dt + k * dt + sigma2),
+                    forward: momentum(sigma2),
+                    backward: (sigma2_neg != sigma2).then(|| momentum(sigma2_neg)),
                 };
                 let root = coupled.solve().ok_or(Error::Diverged { index: 0 })?;
                 let z = friction_state.z;
@@ -254,8 +261,9 @@ impl<H: Hysteresis> MassSystem<H> {
                     .hysteresis()
                     .commit(&mut friction_state.memory, root.y);
                 friction_state.z = root.y;
-                let force =
-                    hysteresis + self.friction.sigma1() * (root.y - z) / dt + sigma2 * root.w;
+                let force = hysteresis
+                    + self.friction.sigma1() * (root.y - z) / dt
+                    + self.friction.sigma2_at(root.w) * root.w;
                 (force, root.w, state.x + dt * root.w)
             }
             Scheme::Explicit => {

@@ -108,22 +108,29 @@ pub fn saturation_forces<const N: usize>(weights: [f64; N], peak: f64, strength:
 }
 
 /// Random valid modified-Leuven parameters with `N` elements whose break deflections span
-/// 0.1 µm to 100 µm.
+/// 0.1 µm to 100 µm, with a viscous coefficient of its own for v < 0 about half of the time.
 pub fn leuven<const N: usize>() -> impl Strategy<Value = LeuvenParams<N>> + Clone {
     (
         stribeck(),
         exponent(),
         coefficient(),
-        coefficient(),
+        (coefficient(), prop::option::of(coefficient())),
         uniform::<_, N>(0.05..1.0),
         uniform::<_, N>(log_uniform(1e-7, 1e-4)),
         1.05..5.0,
     )
-        .prop_map(|(stribeck, n, sigma1, sigma2, weights, delta, strength)| {
-            let w = saturation_forces(weights, stribeck.peak(), strength);
-            let elements = MaxwellSlip::new(w, delta).expect("valid elements");
-            Params::new(stribeck, n, sigma1, sigma2, elements).expect("valid parameters")
-        })
+        .prop_map(
+            |(stribeck, n, sigma1, (sigma2, sigma2_neg), weights, delta, strength)| {
+                let w = saturation_forces(weights, stribeck.peak(), strength);
+                let elements = MaxwellSlip::new(w, delta).expect("valid elements");
+                let params =
+                    Params::new(stribeck, n, sigma1, sigma2, elements).expect("valid parameters");
+                match sigma2_neg {
+                    Some(sigma2_neg) => params.with_sigma2_neg(sigma2_neg).expect("valid"),
+                    None => params,
+                }
+            },
+        )
 }
 
 /// A velocity sequence made of segments that exercise every regime of the model: plateaus,

@@ -22,18 +22,18 @@ int main(int argc, char **argv) {
     const double dt = 1e-3;
     leuven_rt_compensator *c = NULL;
     leuven_rt_error error;
+    /* A model file may hold a position-dependent level; in feedforward mode it is placed from the
+     * axis's start position (here 0), then along the position integrated from the desired
+     * velocity. */
     leuven_rt_status status =
-        argc > 1 ? leuven_rt_compensator_create_from_file(argv[1], dt, LEUVEN_RT_MODE_FEEDFORWARD,
-                                                          &c, &error)
+        argc > 1 ? leuven_rt_compensator_create_from_file_at(argv[1], dt, LEUVEN_RT_MODE_FEEDFORWARD,
+                                                             0.0, &c, &error)
                  : leuven_rt_compensator_create(&p, dt, LEUVEN_RT_MODE_FEEDFORWARD, &c, &error);
     if (status != LEUVEN_RT_OK) {
         fprintf(stderr, "create: %s (field '%s'): %s\n", leuven_rt_status_message(status),
                 error.field, error.message);
         return 1;
     }
-    /* A model file may hold a position-dependent level; in feedforward mode it is evaluated at the
-     * position integrated from the desired velocity, which starts where the axis is. */
-    if (leuven_rt_compensator_set_position(c, 0.0) != LEUVEN_RT_OK) return 1;
     double peak = 0.0;
     for (int k = 0; k < 2000; ++k) {
         /* 1 s period, +-10 mm/s. */

@@ -12,7 +12,9 @@
  * force, and leaves the compensator out for that sample). Output lines:
  *
  * A third part gives compensators a position-dependent level, from the versioned model file and
- * from the struct, steps them over a fixed trajectory, and refuses bad levels and bad files.
+ * from the struct, steps them over a fixed trajectory, and refuses bad levels and bad files. A
+ * fourth gives them a viscous coefficient of their own for v < 0, a position force and trajectory
+ * steps (velocity and position together), and refuses feedforward terms without a start position.
  *
  *   loop <k> <x_feedforward> <force_feedforward> <x_observer> <force_observer>
  *   check <name> <status> <field> <index>
@@ -206,6 +208,12 @@ static void bad_input(const char *folder) {
     bad = p;
     bad.sigma2 = NAN;
     EXPECT("create_sigma2_nan", leuven_rt_compensator_create(&bad, DT, 0, &c, &error));
+    bad = p;
+    bad.sigma2_neg = -0.5;
+    EXPECT("create_sigma2_neg_negative", leuven_rt_compensator_create(&bad, DT, 0, &c, &error));
+    bad = p;
+    bad.sigma2_neg = NAN;
+    EXPECT("create_sigma2_neg_nan", leuven_rt_compensator_create(&bad, DT, 0, &c, &error));
     double w_bad[10];
     memcpy(w_bad, W, sizeof w_bad);
     w_bad[3] = -0.2;
@@ -451,9 +459,20 @@ static void levels(const char *folder) {
     leuven_rt_compensator_destroy(made);
     made = NULL;
 
-    /* Feedforward: the position is integrated from the start given. */
+    /* Feedforward: a level needs the start position, and the position is integrated from it. */
     EXPECT("model_feedforward", leuven_rt_compensator_create_from_json(
                                     MODEL, strlen(MODEL), DT, LEUVEN_RT_MODE_FEEDFORWARD, &c, &error));
+    printf("value model_feedforward_named %d\n", strstr(error.message, "`x`") == error.message);
+    EXPECT("model_feedforward_at_nan",
+           leuven_rt_compensator_create_from_json_at(MODEL, strlen(MODEL), DT,
+                                                     LEUVEN_RT_MODE_FEEDFORWARD, NAN, &c, &error));
+    if (c != NULL) {
+        fprintf(stderr, "a refused create must leave *out as it was\n");
+        exit(2);
+    }
+    EXPECT("model_feedforward_at",
+           leuven_rt_compensator_create_from_json_at(MODEL, strlen(MODEL), DT,
+                                                     LEUVEN_RT_MODE_FEEDFORWARD, 0.5, &c, &error));
     STATUS("set_position_nan", leuven_rt_compensator_set_position(c, NAN));
     STATUS("set_position_null", leuven_rt_compensator_set_position(NULL, 0.0));
     STATUS("set_position_ok", leuven_rt_compensator_set_position(c, -0.0042));
@@ -486,8 +505,9 @@ static void levels(const char *folder) {
         const char *json_ = edited(text, sizeof text, from, to);                             \
         EXPECT(name, leuven_rt_compensator_create_from_json(json_, strlen(json_), DT, 0, &c, &error)); \
     } while (0)
-    MODEL_EXPECT("model_version_2", "\"version\": 1", "\"version\": 2");
-    printf("value model_version_named %d\n", strstr(error.message, "`version` must be 1, got 2") != NULL);
+    MODEL_EXPECT("model_version_3", "\"version\": 1", "\"version\": 3");
+    printf("value model_version_named %d\n", strstr(error.message, "`version` is 3") != NULL &&
+                                                 strstr(error.message, "upgrade leuven-rt") != NULL);
     MODEL_EXPECT("model_version_missing", "\"version\": 1,", "");
     MODEL_EXPECT("model_format_other", "leuven-rt model", "leuven-rt params");
     printf("value model_format_named %d\n", strstr(error.message, "`format` must be") != NULL);
@@ -527,7 +547,119 @@ static void levels(const char *folder) {
     leuven_rt_compensator_step(file, level_position(1), &other);
     printf("value model_file_equals_text %d\n", force == other);
     leuven_rt_compensator_destroy(c);
+    c = NULL;
+    EXPECT("model_file_at", leuven_rt_compensator_create_from_file_at(
+                                path, DT, LEUVEN_RT_MODE_FEEDFORWARD, -0.0042, &c, &error));
     leuven_rt_compensator_destroy(file);
+    file = NULL;
+    leuven_rt_compensator_create_from_json_at(MODEL, strlen(MODEL), DT, LEUVEN_RT_MODE_FEEDFORWARD,
+                                              -0.0042, &file, NULL);
+    same = c != NULL && file != NULL;
+    for (int k = 0; same && k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step(c, level_velocity(k), &force);
+        leuven_rt_compensator_step(file, level_velocity(k), &other);
+        same = force == other;
+    }
+    printf("value model_file_at_equals_text %d\n", same);
+    leuven_rt_compensator_destroy(c);
+    leuven_rt_compensator_destroy(file);
+}
+
+/* A cogging force [N]: a gravity-like trend and one ripple; the Rust side holds the same. */
+static const double COG_COS[2] = {0.4, 0.1}, COG_SIN[2] = {-0.3, 0.05};
+
+/* Viscous asymmetry, a position force and trajectory steps. */
+static void terms(void) {
+    leuven_rt_params p = nominal();
+    p.sigma2_neg = 0.9;
+    leuven_rt_error error;
+    leuven_rt_compensator *c = NULL, *t = NULL;
+    double force = 0.0;
+    leuven_rt_ripple ripples[2] = {{0.004, COS0, SIN0, 3}, {0.0013, COS1, SIN1, 2}};
+    leuven_rt_level level = {0.002, 0.01, {0.05, -0.02}, ripples, 2};
+    leuven_rt_ripple cog_ripple = {0.0025, COG_COS, COG_SIN, 2};
+    leuven_rt_position_force cogging = {0.001, 0.02, {0.8, -0.3}, &cog_ripple, 1};
+
+    /* Feedforward without a start position refuses the terms, naming x; then takes them. */
+    EXPECT("terms_create", leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_FEEDFORWARD, &c, &error));
+    EXPECT("level_without_start", leuven_rt_compensator_set_level(c, &level, &error));
+    EXPECT("force_without_start", leuven_rt_compensator_set_position_force(c, &cogging, &error));
+    STATUS("terms_start", leuven_rt_compensator_set_position(c, -0.0042));
+    EXPECT("level_with_start", leuven_rt_compensator_set_level(c, &level, &error));
+    EXPECT("force_with_start", leuven_rt_compensator_set_position_force(c, &cogging, &error));
+    for (int k = 0; k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step(c, level_velocity(k), &force);
+        printf("value terms_feedforward_%d %.17g\n", k, force);
+    }
+    /* Trajectory steps: the velocity drives the model, the position places the terms. */
+    EXPECT("trajectory_create", leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_FEEDFORWARD, &t, &error));
+    leuven_rt_compensator_set_position(t, level_position(0));
+    leuven_rt_compensator_set_level(t, &level, NULL);
+    leuven_rt_compensator_set_position_force(t, &cogging, NULL);
+    for (int k = 0; k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step_trajectory(t, 1.1 * level_velocity(k), level_position(k), &force);
+        printf("value terms_trajectory_%d %.17g\n", k, force);
+    }
+    double held = 0.0;
+    leuven_rt_compensator_output(t, &held);
+    force = -1.0;
+    STATUS("trajectory_nan_x", leuven_rt_compensator_step_trajectory(t, 1e-3, NAN, &force));
+    printf("value trajectory_held %d\n", force == held);
+    STATUS("trajectory_inf_v", leuven_rt_compensator_step_trajectory(t, INFINITY, 0.0, &force));
+    STATUS("trajectory_null_handle", leuven_rt_compensator_step_trajectory(NULL, 0.0, 0.0, &force));
+    printf("value trajectory_null_handle_force %.17g\n", force);
+    STATUS("trajectory_null_force", leuven_rt_compensator_step_trajectory(t, 0.0, 0.0, NULL));
+
+    /* Positions and levels whose phase cannot be resolved, and bad position forces. */
+    leuven_rt_ripple fine = {1e-12, COG_COS, COG_SIN, 2};
+    leuven_rt_position_force bad = cogging;
+    bad.ripples = &fine;
+    EXPECT("force_period_unresolved", leuven_rt_compensator_set_position_force(c, &bad, &error));
+    printf("value force_period_named %d\n", strstr(error.message, "`ripples[0].period` must be at least 2^20 ulps") != NULL);
+    fine.period = 1e-300;
+    leuven_rt_level bad_level = level;
+    bad_level.ripples = &fine;
+    bad_level.ripple_count = 1;
+    EXPECT("level_period_1e-300", leuven_rt_compensator_set_level(c, &bad_level, &error));
+    bad_level = level;
+    bad_level.half_stroke = 1e-300;
+    EXPECT("level_half_stroke_1e-300", leuven_rt_compensator_set_level(c, &bad_level, &error));
+    bad_level = level;
+    bad_level.middle = 1e308;
+    EXPECT("level_middle_1e308", leuven_rt_compensator_set_level(c, &bad_level, &error));
+    bad = cogging;
+    bad.trend[0] = NAN;
+    EXPECT("force_trend_nan", leuven_rt_compensator_set_position_force(c, &bad, &error));
+    EXPECT("force_null", leuven_rt_compensator_set_position_force(c, NULL, &error));
+    EXPECT("force_null_handle", leuven_rt_compensator_set_position_force(NULL, &cogging, &error));
+    /* None of them changed the compensator: its next sample is its twin's. */
+    double other = 0.0;
+    leuven_rt_compensator *twin = NULL;
+    leuven_rt_compensator_create(&p, DT, LEUVEN_RT_MODE_FEEDFORWARD, &twin, NULL);
+    leuven_rt_compensator_set_position(twin, -0.0042);
+    leuven_rt_compensator_set_level(twin, &level, NULL);
+    leuven_rt_compensator_set_position_force(twin, &cogging, NULL);
+    for (int k = 0; k < LEVEL_SAMPLES; ++k) leuven_rt_compensator_step(twin, level_velocity(k), &other);
+    leuven_rt_compensator_step(c, 1e-3, &force);
+    leuven_rt_compensator_step(twin, 1e-3, &other);
+    printf("value terms_untouched_after_rejections %d\n", force == other);
+    leuven_rt_compensator_destroy(twin);
+    leuven_rt_compensator_destroy(t);
+    leuven_rt_compensator_destroy(c);
+
+    /* A parameter file can give sigma2_neg = 0 beside sigma2 = 0.4. */
+    static const char ZERO_NEG[] =
+        "{\"Fc\": 1.0, \"Fs\": 1.5, \"Vs\": 0.001, \"delta\": 2.0, \"n\": 2.0, \"sigma1\": 30.0,\n"
+        " \"sigma2\": 0.4, \"sigma2_neg\": 0.0, \"W\": [0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2, 0.2],\n"
+        " \"Delta\": [1e-06, 2e-06, 3e-06, 4e-06, 5e-06, 6e-06, 7e-06, 8e-06, 9e-06, 1e-05]}\n";
+    c = NULL;
+    EXPECT("json_sigma2_neg_zero", leuven_rt_compensator_create_from_json(ZERO_NEG, strlen(ZERO_NEG), DT,
+                                                                          LEUVEN_RT_MODE_FEEDFORWARD, &c, &error));
+    for (int k = 0; k < LEVEL_SAMPLES; ++k) {
+        leuven_rt_compensator_step(c, level_velocity(k), &force);
+        printf("value sigma2_neg_zero_%d %.17g\n", k, force);
+    }
+    leuven_rt_compensator_destroy(c);
 }
 
 /* argv[1]: a folder to write a parameter file in (default: the current one). */
@@ -536,5 +668,6 @@ int main(int argc, char **argv) {
     if (status != 0) return status;
     bad_input(argc > 1 ? argv[1] : ".");
     levels(argc > 1 ? argv[1] : ".");
+    terms();
     return 0;
 }
