@@ -16,7 +16,7 @@ from typing import Any
 
 from . import _core
 from ._checks import real_array
-from .errors import ParameterError, data_of, shown
+from .errors import ModelFileError, ParameterError, data_of, shown
 
 #: gms-core's validated parameter set (``_core.CoreParams``), built from any object with the attributes
 #: of :class:`Params`; looked up by name so that it types as ``Any`` whether or not _core.pyi lists it.
@@ -227,7 +227,8 @@ class Params:
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Params:
         """Reads a parameter file (UTF-8 JSON); a file that cannot be read or decoded raises
-        :class:`ParameterError` naming it."""
+        :class:`ParameterError` naming it; a text the reader refuses raises its
+        :class:`~leuven_rt.errors.ModelFileError` under the file's name, with the same data."""
         try:
             with open(path, encoding="utf-8") as file:
                 text = file.read()
@@ -243,6 +244,11 @@ class Params:
             ) from None
         try:
             return cls.from_json(text)
+        except ModelFileError as error:
+            # The reader's class, and where a syntax error is, are kept under the longer message.
+            again = ModelFileError(f"{path}: {error}", **data_of(error))
+            again.line, again.column = error.line, error.column
+            raise again from None
         except ParameterError as error:
             raise ParameterError(f"{path}: {error}", **data_of(error)) from None
 

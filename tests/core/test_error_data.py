@@ -571,6 +571,11 @@ def test_a_file_error_keeps_its_data_under_the_file_name(tmp_path: Path) -> None
     error = refusal(lambda: lr.Params.load(path))
     assert str(error).startswith(f"{path}: `Fs`: `Fs` must be >= `Fc`")
     assert (error.kind, error.field, error.value) == ("static_below_coulomb", "Fs", 0.5)
+    assert type(error) is ModelFileError
+    path.write_text('{"Fc": 1.0,\n "Fs": }', encoding="utf-8")
+    syntax = refusal(lambda: lr.Params.load(path))
+    assert type(syntax) is ModelFileError and str(syntax).startswith(f"{path}: not JSON")
+    assert (syntax.kind, syntax.field, syntax.line, syntax.column) == ("not_json", None, 2, 8)
     missing = refusal(lambda: lr.Params.load(tmp_path / "missing.json"))
     assert (missing.kind, missing.value) == ("unreadable_file", str(tmp_path / "missing.json"))
 
