@@ -163,6 +163,26 @@ def test_a_one_way_ramp_keeps_no_viscous_slope_it_cannot_see() -> None:
     assert float(lr.predict(result.model, MotionData(t, x, f, v=v)).friction[-1]) == pytest.approx(3.0, rel=0.05)
 
 
+def test_every_term_a_one_way_ramp_cannot_tell_is_written_neutral() -> None:
+    """Moving at one speed in +x only: a viscous slope, the −x levels, an offset split off the
+    Coulomb level and an inertia are all undetermined; the file keeps each at the value that adds
+    no force, and a warning names each."""
+    dt = 1e-3
+    t = np.arange(10_000) * dt
+    v = np.full(t.size, 0.05)
+    x = np.cumsum(v) * dt
+    f = 3.0 + np.random.default_rng(4).normal(0.0, 0.05, t.size)
+    result = lr.identify(MotionData(t, x, f, v=v), "coulomb,viscous,asymmetry,offset,inertia")
+    model = result.model
+    params = model.friction
+    assert params.sigma2 == 0.0 and model.offset == 0.0 and model.inertia == 0.0
+    assert params.Fc_neg in (None, params.Fc) and params.sigma2_neg in (None, 0.0)
+    warned = " ".join(result.warnings)
+    for name in ("sigma2", "offset", "inertia", "Fc_neg"):
+        assert f"`{name}`" in warned, result.warnings
+    assert params.Fc == pytest.approx(3.0, rel=0.01)
+
+
 def test_emps_figure_of_merit_is_the_relative_error_of_decimated_signals() -> None:
     t = np.arange(4000) * 1e-3
     x = 0.01 * np.sin(2 * np.pi * t)

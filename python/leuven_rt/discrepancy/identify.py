@@ -32,7 +32,7 @@ from ..fitting.remains import functions, remains
 from ..fitting.select import Selection, select
 from ..fitting.settings import Settings
 from ..fitting.solve import Fitted, fit
-from ..fitting.structure import parse_effects
+from ..fitting.structure import Structure, parse_effects
 from ..fitting.undetermined import Undetermined, settle
 from .localise import Layout
 from .report import Diagnosis, Step
@@ -104,8 +104,8 @@ def identify(
 def _settle(run: Selection) -> tuple[Fitted, list[Undetermined]]:
     final = run.written
 
-    def refit(fixed: dict[str, float]) -> Fitted:
-        return fit(final.structure, run.file_scales, run.file_target, final.theta, fixed=fixed)
+    def refit(structure: Structure, fixed: dict[str, float]) -> Fitted:
+        return fit(structure, run.file_scales, run.file_target, final.theta, fixed=fixed)
 
     return settle(final, run.file_scales, run.file_target, run.noise, refit)
 

@@ -24,7 +24,11 @@ import numpy as np
 from .._typing import FloatArray
 from .evaluate import evaluate
 from .solve import Fitted, Target
-from .structure import Scales
+from .structure import Scales, Structure
+
+#: The −x parameters of ``asymmetry``: when the −x level is undetermined (a log that never moves
+#: in −x), the model is made symmetric (the −x levels the +x ones) instead of fixing a number.
+MINUS_X = ("Fc_neg", "Fs_neg_rise", "sigma2_neg")
 
 #: A parameter is undetermined when its standard error exceeds this share of its absolute value.
 RELATIVE = 0.5
@@ -34,7 +38,7 @@ MAX_LAG = 200
 
 def neutral(name: str, theta: dict[str, float]) -> float | None:
     """The value at which parameter ``name`` adds no force, or None if it has none."""
-    if name in ("sigma2", "sigma2_neg", "Fs_rise", "Fs_neg_rise", "offset", "inertia"):
+    if name in ("sigma1", "sigma2", "sigma2_neg", "Fs_rise", "Fs_neg_rise", "offset", "inertia"):
         return 0.0
     if name == "Fc_neg":
         return theta.get("Fc")
@@ -99,10 +103,10 @@ def settle(
     scales: Scales,
     target: Target,
     noise: float,
-    refit: Callable[[dict[str, float]], Fitted],
+    refit: Callable[[Structure, dict[str, float]], Fitted],
 ) -> tuple[Fitted, list[Undetermined]]:
     """``fitted`` with its undetermined parameters fixed at their neutral values and the rest
-    refitted (``refit(fixed)``), and what was fixed."""
+    refitted (``refit(structure, fixed)``), and what was fixed."""
     errors = standard_errors(fitted, scales, target, noise)
     fixed: dict[str, float] = {}
     found: list[Undetermined] = []
@@ -116,7 +120,11 @@ def settle(
             found.append(Undetermined(name, value, error, kept))
     if not fixed:
         return fitted, []
-    return refit(fixed), found
+    structure = fitted.structure
+    if "Fc_neg" in fixed:
+        structure = structure.without("asymmetry")
+        fixed = {name: value for name, value in fixed.items() if name not in MINUS_X}
+    return refit(structure, fixed), found
 
 
-__all__ = ["RELATIVE", "Undetermined", "inflation", "neutral", "settle", "standard_errors"]
+__all__ = ["MINUS_X", "RELATIVE", "Undetermined", "inflation", "neutral", "settle", "standard_errors"]
