@@ -61,7 +61,7 @@ class EffectNames:
 
     def __str__(self) -> str:
         try:
-            from .discrepancy.effects import CATALOGUE
+            from .fitting.structure import CATALOGUE
         except ImportError:  # the analysis extra is not installed
             return "the effects of docs/effects.md (with leuven-rt[analysis])"
         return ", ".join(CATALOGUE)

@@ -83,7 +83,11 @@ def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
     slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
     if reconstruction.source == "velocity":
         if data.v is None:
-            raise DataError("the model is driven by the logged velocity, but the log has no `v` column")
+            raise DataError(
+                "the model is driven by the logged velocity, but the log has no `v` column",
+                kind="missing_column",
+                field="v",
+            )
         v = data.v if cutoff is None else lowpass(data.v, dt, cutoff)
         a = np.gradient(lowpass(data.v, dt, slow), dt)
         return Motion(reconstruction, "velocity", v, v, data.x, a, dt)

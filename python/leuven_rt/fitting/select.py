@@ -129,8 +129,8 @@ def select(
     if reconstruction.source == "position":
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
-    file = choose_reconstruction(record, without, target.weight == 0, target.scale)
-    written = file[3] if file[0] == reconstruction else fit(without.structure, file[2], file[1], file[3].theta)
+    file = choose_reconstruction(record, without)
+    written = fit(without.structure, file[2], file[1], file[3].theta)
     return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
                      without, run.unit, run.tried, file[0], file[1], file[2], written,
                      int(np.count_nonzero(gross)))  # fmt: skip
@@ -369,22 +369,23 @@ def full_mse(fitted: Fitted, target: Target) -> float:
 
 
 def choose_reconstruction(
-    record: MotionData,
-    fitted: Fitted,
-    left_out: NDArray[np.bool_],
-    scale: float | None = None,
-    iterations: int = SCREEN,
+    record: MotionData, fitted: Fitted, iterations: int = SCREEN
 ) -> tuple[Reconstruction, Target, Scales, Fitted]:
-    """The reconstruction under which ``fitted``'s structure, refitted (without the samples
-    ``left_out``: gross errors, edges, reversals no model can place), predicts the log best over
-    every sample, with its target, scales and fit."""
+    """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
+    every sample, with its target, scales and fit. The file is judged as ``predict`` judges it:
+    by the squared error over every sample but the filters' edges, so it is fitted that way too
+    (no robust loss, the reversals the rounds leave out included): the error at a reversal is
+    part of what a compensator driven by this signal gives."""
     best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
     for reconstruction in reconstruction_options(record):
         try:
             target, scales = prepare(record, reconstruction)
         except DataError:
             continue
-        target = dataclasses.replace(target, weight=np.where(left_out, 0.0, target.weight), scale=scale)
+        edge = min(EDGE, record.t.size // 10)
+        weight = np.ones(record.t.size)
+        weight[:edge], weight[weight.size - edge :] = 0.0, 0.0
+        target = dataclasses.replace(target, weight=weight, scale=None)
         refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
         error = full_mse(refitted, target)
         if best is None or error < best[0]:

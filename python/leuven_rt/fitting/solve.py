@@ -14,7 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import least_squares
+
+from .._extras import require
+
+require("scipy", extra="analysis", needed_by="leuven_rt.fitting")
+
+from scipy.optimize import least_squares  # noqa: E402
 
 from .._typing import FloatArray
 from ..data.reconstruction import Motion

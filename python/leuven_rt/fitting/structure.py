@@ -80,6 +80,7 @@ def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tup
             kind="invalid_choice",
             field=argument,
             value=unknown[0],
+            expected=list(CATALOGUE),
         )
     if len(set(items)) != len(items):
         raise InputError(f"`{argument}` repeats effects: got {items}", kind="repeated", field=argument)
