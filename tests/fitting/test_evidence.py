@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from leuven_rt.data.reconstruction import ambiguous_samples, resolution, travel_since_reversal
+from leuven_rt.data.reconstruction import ambiguous_samples, noisy_position, resolution, travel_since_reversal
 from leuven_rt.data.signals import residual_noise
 from leuven_rt.fitting.remains import functions, remains
 
@@ -92,3 +92,17 @@ def test_the_ambiguous_samples_span_each_reversal_from_the_last_count_to_the_fir
     out = ambiguous_samples(x, margin=0)
     # The count at sample 2 is the last in +x, the one at 6 the first in −x; 7 → 9 reverses again.
     assert out.tolist() == [False, False, True, True, True, True, False, True, True, False]
+
+
+def test_a_position_whose_noise_reverses_it_is_told_from_an_encoder() -> None:
+    dt = 1e-3
+    t = np.arange(20_000) * dt
+    x = 1e-3 * np.sin(2 * np.pi * 0.5 * t)
+    # An encoder (1 µm counts, 0.1 µm of jitter before the count) reverses where the motion does,
+    # give or take a count at each turn.
+    rng = np.random.default_rng(1)
+    encoder = np.round((x + rng.normal(0.0, 1e-7, t.size)) / 1e-6) * 1e-6
+    assert not noisy_position(encoder, dt)
+    # A position estimate with noise of ten counts reverses at every other sample of slow motion.
+    estimate = np.round((x + rng.normal(0.0, 1e-5, t.size)) / 1e-6) * 1e-6
+    assert noisy_position(estimate, dt)

@@ -36,6 +36,8 @@ from ..modelfile import Reconstruction
 from .records import MotionData
 from .signals import check_cutoff, lowpass
 
+#: A position whose counts reverse this many times as often as its low-passed version is noisy.
+SPURIOUS = 4
 #: The acceleration's cutoff is at most this share of the Nyquist frequency.
 ACCELERATION_CUTOFF = 0.1
 
@@ -127,6 +129,25 @@ def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
     return out
 
 
+def reversals(x: FloatArray) -> int:
+    """How many times the encoder's counts change direction."""
+    steps = np.diff(x)
+    sign = np.sign(steps[steps != 0])
+    return int(np.count_nonzero(sign[1:] != sign[:-1]))
+
+
+def noisy_position(x: FloatArray, dt: float) -> bool:
+    """Whether the position's own noise reverses it: its counts change direction more than
+    :data:`SPURIOUS` times as often as the position through a low-pass at a twentieth of the
+    Nyquist frequency does. An encoder's counts reverse only where the motion does; a position
+    read with noise (a joint's position estimate, an analogue sensor) reverses at every other
+    sample of slow motion, and its raw differences are not the motion."""
+    cutoff = 0.05 * 0.5 / dt
+    if x.size < 8 or not cutoff * x.size * dt >= 8.0:
+        return False
+    return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)
+
+
 def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
     """|x − x at the last change of the direction of motion| at every sample."""
     direction = np.sign(v)
@@ -151,6 +172,8 @@ def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
 __all__ = [
     "Motion",
     "ambiguous_samples",
+    "noisy_position",
+    "reversals",
     "describe",
     "differences",
     "filter_margin",

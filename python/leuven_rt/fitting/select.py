@@ -31,6 +31,7 @@ from ..data.reconstruction import (
     Reconstruction,
     ambiguous_samples,
     filter_margin,
+    noisy_position,
     reconstruct,
     resolution,
 )
@@ -345,8 +346,14 @@ def _choose(
 
 def rounds_reconstruction(record: MotionData) -> Reconstruction:
     """The reconstruction the rounds name effects under: the logged velocity where there is one,
-    else the raw encoder position, whose ambiguous reversals are known to the sample."""
-    return Reconstruction("velocity") if record.v is not None else Reconstruction("position")
+    else the raw encoder position, whose ambiguous reversals are known to the sample; a position
+    whose noise reverses it (:func:`~leuven_rt.data.reconstruction.noisy_position`) through the
+    lighter of the low-passes."""
+    if record.v is not None:
+        return Reconstruction("velocity")
+    if noisy_position(record.x, record.dt):
+        return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
+    return Reconstruction("position")
 
 
 def reconstruction_options(record: MotionData) -> list[Reconstruction]:
@@ -357,7 +364,7 @@ def reconstruction_options(record: MotionData) -> list[Reconstruction]:
     if record.v is not None:
         options.append(Reconstruction("position"))
     options += [Reconstruction("position", share * nyquist) for share in FILTERS]
-    return options
+    return list(dict.fromkeys(options))
 
 
 def full_mse(fitted: Fitted, target: Target) -> float:
@@ -402,7 +409,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     edge = min(EDGE, samples // 10)
     weight[:edge], weight[samples - edge :] = 0.0, 0.0
     if reconstruction.source == "position":
-        weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
+        # Where the counts reverse only by the position's noise, the reversals to leave out are
+        # those of the motion the model is driven by.
+        counted = motion.x if reconstruction.cutoff is not None and noisy_position(record.x, record.dt) else record.x
+        weight[ambiguous_samples(counted, filter_margin(reconstruction, record.dt))] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
