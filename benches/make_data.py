@@ -41,7 +41,8 @@ def main() -> int:
         named = set(result.diagnosis.named_effects)
         ok = named == EXPECTED and rms <= BOUND * log.noise_std
         passed += ok
-        print(f"seed {seed}: {log.data.samples} samples, named {sorted(named)}, file rms {rms / log.noise_std:.3f}x "
+        ratio = rms / log.noise_std
+        print(f"seed {seed}: {log.data.samples} samples, named {sorted(named)}, file rms {ratio:.3f}x "
               f"the noise, {seconds:.1f} s  {'PASS' if ok else 'FAIL'}", flush=True)  # fmt: skip
     print(f"make_data: {passed}/{len(chosen)} named exactly with the file within {BOUND}x the noise")
     return 0 if passed == len(chosen) else 1

@@ -220,7 +220,8 @@ def built_c_library() -> ctypes.CDLL:
     built = [
         name
         for line in done.stdout.splitlines()
-        if (message := json.loads(line)).get("reason") == "compiler-artifact" and message["target"]["name"] == "gms_ffi"
+        if (message := json.loads(line)).get("reason") == "compiler-artifact"
+        and message["target"]["name"] == "gms_ffi"
         for name in message["filenames"]
         if name.endswith(".so")
     ]
@@ -237,7 +238,10 @@ def built_c_library() -> ctypes.CDLL:
     ]  # fmt: skip
     library.leuven_rt_compensator_step.argtypes = [handle, ctypes.c_double, ctypes.POINTER(ctypes.c_double)]
     library.leuven_rt_compensator_step_trajectory.argtypes = [
-        handle, ctypes.c_double, ctypes.c_double, ctypes.POINTER(ctypes.c_double)
+        handle,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.POINTER(ctypes.c_double),
     ]
     for name in ("create_from_json", "create_from_json_at", "step", "step_trajectory"):
         getattr(library, f"leuven_rt_compensator_{name}").restype = status

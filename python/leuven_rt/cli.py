@@ -298,7 +298,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     predict.add_argument(
         "--json",
         action="store_true",
-        help='print {"rms", "rms_causal", "samples", "units", "reconstruction", "warnings"} as JSON on stdout',
+        help='print {"rms", "rms_causal", "samples", "units", "reconstruction", "warnings"} as JSON',
     )
     predict.add_argument(
         "--cutoff",

@@ -49,7 +49,8 @@ def _from_model_file(
     for name, given in (("level", level), ("position_force", position_force)):
         if given is not None:
             raise InputError(
-                f"`{name}` must be None when the model is a model file (the file holds its own), got a {type(given).__name__}",
+                f"`{name}` must be None when the model is a model file (the file holds its own), "
+                f"got a {type(given).__name__}",
                 kind="not_applicable",
                 field=name,
                 value=given,

@@ -88,7 +88,8 @@ class Prediction:
     def to_dict(self) -> dict[str, object]:
         """The summary of ``predict --json``."""
         return {"rms": self.rms, "rms_causal": self.rms_causal, "samples": self.samples, "units": self.units,
-                "reconstruction": {"source": self.reconstruction.source, "cutoff": self.reconstruction.cutoff},
+                "reconstruction": {"source": self.reconstruction.source,
+                                   "cutoff": self.reconstruction.cutoff},
                 "warnings": list(self.notes)}  # fmt: skip
 
     def to_csv(self, path: str | PathLike[str], force: bool = False) -> Path:
@@ -124,7 +125,9 @@ class Prediction:
         return save(drawing, target, dpi=110)
 
 
-def effective_reconstruction(model: ModelFile, record: MotionData, cutoff: float | None) -> tuple[Reconstruction, tuple[str, ...]]:
+def effective_reconstruction(
+    model: ModelFile, record: MotionData, cutoff: float | None
+) -> tuple[Reconstruction, tuple[str, ...]]:
     """The reconstruction ``predict`` drives ``model`` with on ``record``: the file's (version 1:
     the position at a tenth of the Nyquist frequency), its cutoff replaced by ``cutoff`` when
     given, the raw position where the file wants a velocity the log lacks (with a note)."""
@@ -145,12 +148,15 @@ def model_forces(model: ModelFile, motion: Motion) -> tuple[FloatArray, FloatArr
     """The friction along ``motion`` (with the level and the position force: the run a
     compensator makes over the same signal) and the model's whole force, friction plus the
     measurement terms at the motion's acceleration."""
-    terms = {"level": model.level, "position_force": model.position_force}
-    placed = model.level is not None or model.position_force is not None
+    level, force = model.level, model.position_force
     if motion.input == "velocity":
-        friction = simulate(model.friction, motion.v, motion.dt, **({"x": motion.x, **terms} if placed else {}))
+        placed = level is not None or force is not None
+        x = motion.x if placed else None
+        friction = simulate(model.friction, motion.v, motion.dt, x=x, level=level, position_force=force)
     else:
-        friction = simulate_position(model.friction, motion.drive, motion.dt, **terms)
+        friction = simulate_position(
+            model.friction, motion.drive, motion.dt, level=level, position_force=force
+        )
     return friction, friction + model.measurement_force(motion.a)
 
 
@@ -189,8 +195,11 @@ def predict(
     if live == reconstruction:
         rms_causal = rms
     else:
-        rms_causal = math.sqrt(float(np.mean((model_forces(chosen, reconstruct(record, live))[1] - record.f) ** 2)))
-    return Prediction(t=record.t, f=record.f, f_model=f_model, friction=friction, x=motion.x, v=motion.v, rms=rms,
+        rms_causal = math.sqrt(
+            float(np.mean((model_forces(chosen, reconstruct(record, live))[1] - record.f) ** 2))
+        )
+    return Prediction(t=record.t, f=record.f, f_model=f_model, friction=friction, x=motion.x, v=motion.v,
+                      rms=rms,
                       rms_causal=rms_causal, reconstruction=reconstruction, units=kind, source=record.source,
                       notes=record.notes + notes)  # fmt: skip
 

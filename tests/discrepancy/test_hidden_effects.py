@@ -48,7 +48,8 @@ def test_presliding_is_the_modified_leuven_bank() -> None:
     # curve from rest and the curve back after 20 µm, as the generator's bank gives them (six
     # elements up to 10 µm holding 1.02·Fc, n = 2).
     index = np.arange(1, 7)
-    truth = lr.Params(Fc=1.0, Fs=1.0, Vs=1e-3, delta=2.0, n=2.0, sigma2=10.0, W=tuple((7 - index) / 21 * 1.02),
+    truth = lr.Params(Fc=1.0, Fs=1.0, Vs=1e-3, delta=2.0, n=2.0, sigma2=10.0,
+                      W=tuple((7 - index) / 21 * 1.02),
                       Delta=tuple(1e-5 * index / 6))  # fmt: skip
     dt = 1e-3
     x = np.concatenate([np.linspace(0.0, 2e-5, 400), np.linspace(2e-5, -2e-5, 800)])
@@ -92,6 +93,8 @@ def test_the_report_follows_the_documented_layout() -> None:
     assert set(report["unexplained"]) == {"significant", "where", "drift"}
     assert report["settings"] == lr.discrepancy.Settings().to_dict()
     # The final model is the file, as written.
-    assert report["final_model"] == {key: value for key, value in identification.model.to_dict().items() if key != "report"}
+    assert report["final_model"] == {
+        key: value for key, value in identification.model.to_dict().items() if key != "report"
+    }
     assert np.isfinite(report["noise_std"]) and report["noise_std"] > 0
     assert report["floor_estimate"] >= 0.0

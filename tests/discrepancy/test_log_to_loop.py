@@ -38,7 +38,9 @@ def test_make_data_names_the_papers_two_effects_and_the_file_reaches_the_noise()
     assert sorted(diagnosis.named_effects) == ["presliding_hysteresis", "stribeck"], diagnosis.story()
     # the noise the workflow reads is the generator's, within 10 %
     assert diagnosis.noise_std == pytest.approx(synthetic.noise_std, rel=0.1)
-    assert lr.predict(identification.model, synthetic.data).rms <= 1.2 * synthetic.noise_std, diagnosis.story()
+    assert lr.predict(identification.model, synthetic.data).rms <= 1.2 * synthetic.noise_std, (
+        diagnosis.story()
+    )
 
 
 # --- 2. and 3. a periodic ripple, and the model file in a compensator ---------------------------

@@ -34,7 +34,9 @@ def identified(request: pytest.FixtureRequest) -> tuple[MotionData, lr.Identific
     return log, lr.identify(log)
 
 
-def test_the_reports_final_rms_is_the_written_files_predict_rms(identified: tuple[MotionData, lr.Identification]) -> None:
+def test_the_reports_final_rms_is_the_written_files_predict_rms(
+    identified: tuple[MotionData, lr.Identification],
+) -> None:
     log, result = identified
     prediction = lr.predict(result.model, log)
     assert result.diagnosis.rms_after == prediction.rms
@@ -66,7 +68,12 @@ def compensated(model: lr.ModelFile | Path, prediction: lr.Prediction) -> np.nda
     reconstruction = prediction.reconstruction
     if reconstruction.source == "velocity":
         compensator = lr.Compensator(model, prediction.dt, "feedforward", x=float(prediction.x[0]))
-        return np.array([compensator.step_trajectory(float(v), float(x)) for v, x in zip(prediction.v, prediction.x)])
+        return np.array(
+            [
+                compensator.step_trajectory(float(v), float(x))
+                for v, x in zip(prediction.v, prediction.x, strict=True)
+            ]
+        )
     compensator = lr.Compensator(model, prediction.dt, "observer")
     return np.array([compensator.step(float(x)) for x in prediction.x])
 
@@ -84,9 +91,11 @@ def c_compensated(text: str, prediction: lr.Prediction) -> np.ndarray:
     assert status == 0, error.message
     out = np.empty(prediction.x.size)
     try:
-        for k, (v, x) in enumerate(zip(prediction.v, prediction.x)):
+        for k, (v, x) in enumerate(zip(prediction.v, prediction.x, strict=True)):
             if velocity:
-                status = library.leuven_rt_compensator_step_trajectory(handle, float(v), float(x), ctypes.byref(force))
+                status = library.leuven_rt_compensator_step_trajectory(
+                    handle, float(v), float(x), ctypes.byref(force)
+                )
             else:
                 status = library.leuven_rt_compensator_step(handle, float(x), ctypes.byref(force))
             assert status == 0
@@ -105,7 +114,9 @@ def test_the_compensator_running_the_written_file_gives_predicts_friction(
     path = tmp_path / "model.json"
     result.model.save(path)
     for model in (result.model, path):
-        np.testing.assert_allclose(compensated(model, prediction), prediction.friction, rtol=0.0, atol=1e-9 * scale)
+        np.testing.assert_allclose(
+            compensated(model, prediction), prediction.friction, rtol=0.0, atol=1e-9 * scale
+        )
     from_c = c_compensated(path.read_text(), prediction)
     np.testing.assert_allclose(from_c, prediction.friction, rtol=0.0, atol=1e-9 * scale)
 
@@ -145,7 +156,9 @@ def test_a_noise_free_coulomb_log_names_nothing_at_any_scale() -> None:
     v = 0.01 * np.sin(2 * np.pi * 0.5 * t)
     x = np.cumsum(v) * dt
     for scale in (1.0, 1e-9):
-        f = scale * lr.simulate(lr.Params(Fc=1.0, Fs=1.0, Vs=1.0, delta=2.0, n=2.0, W=[2.0], Delta=[1e-10]), v, dt)
+        f = scale * lr.simulate(
+            lr.Params(Fc=1.0, Fs=1.0, Vs=1.0, delta=2.0, n=2.0, W=[2.0], Delta=[1e-10]), v, dt
+        )
         diagnosis = lr.diagnose(MotionData(t, x, f, v=v), "coulomb")
         assert diagnosis.named_effects == [], (scale, diagnosis.story())
 
@@ -160,7 +173,9 @@ def test_a_one_way_ramp_keeps_no_viscous_slope_it_cannot_see() -> None:
     assert result.params.sigma2 == 0.0
     assert any("sigma2" in warning and "not determined" in warning for warning in result.warnings)
     # What the compensator would add at 0.1 m/s stays what the log shows.
-    assert float(lr.predict(result.model, MotionData(t, x, f, v=v)).friction[-1]) == pytest.approx(3.0, rel=0.05)
+    assert float(lr.predict(result.model, MotionData(t, x, f, v=v)).friction[-1]) == pytest.approx(
+        3.0, rel=0.05
+    )
 
 
 def test_every_term_a_one_way_ramp_cannot_tell_is_written_neutral() -> None:
@@ -187,17 +202,23 @@ def test_emps_figure_of_merit_is_the_relative_error_of_decimated_signals() -> No
     t = np.arange(4000) * 1e-3
     x = 0.01 * np.sin(2 * np.pi * t)
     f = np.sin(2 * np.pi * 3 * t)
-    model = lr.ModelFile(friction=lr.Params(Fc=1e-9, Fs=1e-9, Vs=1.0, delta=2.0, n=2.0, W=[1.0], Delta=[1e-12]))
+    model = lr.ModelFile(
+        friction=lr.Params(Fc=1e-9, Fs=1e-9, Vs=1.0, delta=2.0, n=2.0, W=[1.0], Delta=[1e-12])
+    )
     prediction = lr.predict(model, MotionData(t, x, f))
     assert relative_error(prediction) == pytest.approx(100.0, rel=1e-3)
 
 
-def test_the_cli_identify_then_predict_prints_the_same_rms(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_cli_identify_then_predict_prints_the_same_rms(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     from leuven_rt.cli import main
 
     log = make_hidden(("coulomb", "viscous", "offset"), seed=2, with_velocity=True).data
     path = tmp_path / "log.csv"
-    np.savetxt(path, np.column_stack([log.t, log.x, log.f, log.v]), delimiter=",", header="t,x,f,v", comments="")
+    np.savetxt(
+        path, np.column_stack([log.t, log.x, log.f, log.v]), delimiter=",", header="t,x,f,v", comments=""
+    )
     assert main(["identify", str(path), "-o", str(tmp_path / "m.json"), "--report", str(tmp_path / "r.json"),
                  "--quiet"]) == 0  # fmt: skip
     capsys.readouterr()

@@ -7,8 +7,17 @@ import math
 import numpy as np
 import pytest
 
-from leuven_rt.fitting.structure import CATALOGUE, FRICTION, Scales, Structure, bounds, parse_effects, start, unpack
 from leuven_rt.errors import InputError
+from leuven_rt.fitting.structure import (
+    CATALOGUE,
+    FRICTION,
+    Scales,
+    Structure,
+    bounds,
+    parse_effects,
+    start,
+    unpack,
+)
 
 SCALES = Scales(speed_low=1e-4, speed_high=0.1, force=2.0, stiff=1e-10, grid=np.geomspace(1e-7, 1e-4, 6),
                 middle=0.05, half_stroke=0.05)  # fmt: skip

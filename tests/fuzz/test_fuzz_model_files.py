@@ -5,16 +5,14 @@ version changed, the text cut) are fed to Python's ``ModelFile.from_json`` and t
 both accept, or both refuse naming the same key path (the C message starts with it).
 
 The C library is the one ``cargo build -p gms-ffi`` makes from this checkout
-(``conftest.built_c_library``); without cargo the test skips, saying so. Budget: the ``fuzz`` profile of tests/conftest.py.
+(``conftest.built_c_library``); without cargo the test skips, saying so. Budget: the ``fuzz``
+profile of tests/conftest.py.
 """
 
 from __future__ import annotations
 
 import ctypes
 import json
-import shutil
-import subprocess
-from pathlib import Path
 from typing import Any
 
 import pytest

@@ -38,8 +38,8 @@ def test_emps_names_inertia_and_the_file_beats_the_published_error(identified: l
 
 
 def test_emps_validation_set_is_predicted_better_than_by_the_baseline(identified: lr.Identification) -> None:
-    baseline = lr.identify(EMPS / "DATA_EMPS.mat", "coulomb,viscous", settings=lr.discrepancy.Settings(significance=1e9,
-                           joint=1e9))  # fmt: skip
+    nothing = lr.discrepancy.Settings(significance=1e9, joint=1e9)
+    baseline = lr.identify(EMPS / "DATA_EMPS.mat", "coulomb,viscous", settings=nothing)
     assert baseline.diagnosis.named_effects == []
     validation = relative_error_on(identified.model, EMPS / "DATA_EMPS_PULSES.mat")
     validation_baseline = relative_error_on(baseline.model, EMPS / "DATA_EMPS_PULSES.mat")

@@ -45,7 +45,11 @@ ACCELERATION_CUTOFF = 0.1
 def describe(reconstruction: Reconstruction) -> str:
     """The reconstruction in words, for reports."""
     if reconstruction.source == "velocity":
-        how = "as logged" if reconstruction.cutoff is None else f"through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+        how = (
+            "as logged"
+            if reconstruction.cutoff is None
+            else f"through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+        )
         return f"the logged velocity, {how}"
     if reconstruction.cutoff is None:
         return "the encoder position, raw (differences of consecutive samples)"
@@ -172,12 +176,12 @@ def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
 __all__ = [
     "Motion",
     "ambiguous_samples",
-    "noisy_position",
-    "reversals",
     "describe",
     "differences",
     "filter_margin",
+    "noisy_position",
     "reconstruct",
     "resolution",
+    "reversals",
     "travel_since_reversal",
 ]

@@ -24,7 +24,9 @@ def diagnose(
     """Names the catalogue effects (docs/effects.md) that ``baseline`` misses in ``data``: where
     the model and the data disagree, what each named effect gains, and what remains. The same
     arguments and the same fit as :func:`~leuven_rt.identify`, whose diagnosis it returns."""
-    return identify(data, baseline, settings=settings, progress=progress, columns=columns, units=units).diagnosis
+    return identify(
+        data, baseline, settings=settings, progress=progress, columns=columns, units=units
+    ).diagnosis
 
 
 __all__ = ["diagnose"]

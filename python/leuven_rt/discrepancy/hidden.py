@@ -30,10 +30,10 @@ import numpy as np
 from .._typing import FloatArray
 from ..data.records import MotionData
 from ..data.synthetic import excitation
-from ..params import Params
-from ..simulation import simulate_position
 from ..fitting.structure import parse_effects
 from ..level import PositionLevel
+from ..params import Params
+from ..simulation import simulate_position
 
 FC = 1.0  # N
 SIGMA2 = 10.0  # N·s/m
@@ -79,7 +79,8 @@ def make_hidden(
     params = Params(
         Fc=FC, Fs=fs, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=sigma2,
         W=tuple(weights), Delta=tuple(span * index / elements),
-        **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs, "sigma2_neg": ASYMMETRY * sigma2} if asymmetric else {}),
+        **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs, "sigma2_neg": ASYMMETRY * sigma2}
+           if asymmetric else {}),
     )  # fmt: skip
     level = None
     if "position_dependence" in effects:

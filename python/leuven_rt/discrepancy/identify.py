@@ -22,11 +22,6 @@ from threadpoolctl import threadpool_limits
 from ..data.reconstruction import describe, travel_since_reversal
 from ..data.records import DataLike, as_motion_data
 from ..errors import InputError, shown
-from ..modelfile import ModelFile
-from ..params import Params
-from ..prediction import predict
-from ..progress import Progress, reporting
-from ..units import Units, unit_names
 from ..fitting.file import model_file
 from ..fitting.remains import functions, remains
 from ..fitting.select import Selection, select
@@ -34,6 +29,11 @@ from ..fitting.settings import Settings
 from ..fitting.solve import Fitted, fit
 from ..fitting.structure import Structure, parse_effects
 from ..fitting.undetermined import Undetermined, settle
+from ..modelfile import ModelFile
+from ..params import Params
+from ..prediction import predict
+from ..progress import Progress, reporting
+from ..units import Units, unit_names
 from .localise import Layout
 from .report import Diagnosis, Step
 
@@ -121,7 +121,9 @@ def _identification(
     force = unit_names(record.units).force
     warnings = [item.warning() for item in undetermined]
     if run.drift:
-        warnings.append("the friction level drifts over the record (outside the catalogue): the file holds its average")
+        warnings.append(
+            "the friction level drifts over the record (outside the catalogue): the file holds its average"
+        )
     reconstruction = run.file_reconstruction
     written = model_file(final.evaluation.values, run.file_scales, record.units, reconstruction)
     prediction = predict(written, record)
@@ -153,7 +155,8 @@ def _identification(
         unexplained_significant=bool(significant), unexplained_where=where, drift=run.drift,
         settings=dataclasses.asdict(settings),
         final_model={key: value for key, value in written.to_dict().items() if key != "report"},
-        regions_before=layout.regions(residuals[0]), regions_after=layout.regions(residuals[-1]), layout=layout,
+        regions_before=layout.regions(residuals[0]), regions_after=layout.regions(residuals[-1]),
+        layout=layout,
         t=record.t, v=motion.v, x=motion.x, travel=travel, residuals=residuals, units=record.units,
     )  # fmt: skip
     report = diagnosis.to_dict()
@@ -184,7 +187,8 @@ def _params(effect: str, fitted: Fitted, written: ModelFile) -> dict[str, Any]:
     if effect == "presliding_hysteresis":
         weights = np.asarray(values.W)
         return {"elements": int(np.count_nonzero(weights > 1e-9 * weights.max())), "n": friction["n"],
-                "sigma1": friction["sigma1"], "presliding_range": float(np.max(values.Delta[weights > 1e-9 * weights.max()]))}  # fmt: skip
+                "sigma1": friction["sigma1"],
+                "presliding_range": float(np.max(values.Delta[weights > 1e-9 * weights.max()]))}  # fmt: skip
     if effect == "position_dependence":
         form = fitted.structure.form
         terms = values.level if form == "level" else values.force

@@ -40,7 +40,9 @@ class Layout:
     usable: NDArray[np.bool_]
 
     @classmethod
-    def of(cls, v: FloatArray, x: FloatArray, a: FloatArray, presliding: float, usable: NDArray[np.bool_]) -> Layout:
+    def of(
+        cls, v: FloatArray, x: FloatArray, a: FloatArray, presliding: float, usable: NDArray[np.bool_]
+    ) -> Layout:
         """``presliding``: the travel after a reversal counted as near it [m or rad]."""
         top = float(np.percentile(np.abs(v[usable]), 99)) if usable.any() else 0.0
         near = travel_since_reversal(x, v) <= presliding
@@ -66,7 +68,9 @@ class Layout:
         out = []
         for name, mask in self.masks.items():
             part = residual[mask]
-            out.append(Region(name, part.size / total, float(np.sqrt(np.mean(part**2))), float(np.mean(part))))
+            out.append(
+                Region(name, part.size / total, float(np.sqrt(np.mean(part**2))), float(np.mean(part)))
+            )
         return out
 
     def where_improved(self, before: FloatArray, after: FloatArray, unit: str = "N") -> str:

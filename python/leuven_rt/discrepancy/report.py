@@ -76,10 +76,15 @@ class Diagnosis:
             "rms_after": self.rms_after,
             "named_effects": self.named_effects,
             "steps": [
-                {"effect": s.effect, "where": s.where, "rms_before": s.rms_before, "rms_after": s.rms_after,
-                 "params": s.params}
+                {
+                    "effect": s.effect,
+                    "where": s.where,
+                    "rms_before": s.rms_before,
+                    "rms_after": s.rms_after,
+                    "params": s.params,
+                }
                 for s in self.steps
-            ],  # fmt: skip
+            ],
             "unexplained": {
                 "significant": self.unexplained_significant,
                 "where": self.unexplained_where,
@@ -99,8 +104,14 @@ class Diagnosis:
             f"{self.samples} samples; force noise {self.noise_std:.3g} {N}; the floor this log allows "
             f"{self.floor_estimate:.3g} {N} (the error of the right model driven by what the log gives)",
             f"the model is driven by {self.reconstruction['description']}",
-            *([f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors the model "
-               "cannot explain (beyond 5 times the noise); the fit leaves them out"] if self.gross_errors else []),
+            *(
+                [
+                    f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors "
+                    "the model cannot explain (beyond 5 times the noise); the fit leaves them out"
+                ]
+                if self.gross_errors
+                else []
+            ),
             f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} {N}",
             "where the baseline and the data disagree (residual rms by region):",
         ]
@@ -114,7 +125,8 @@ class Diagnosis:
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
-        lines.append(f"final model: rms {self.rms_after:.3g} {N} ({self.rms_after / max(self.noise_std, 1e-300):.2f}x "
+        ratio = self.rms_after / max(self.noise_std, 1e-300)
+        lines.append(f"final model: rms {self.rms_after:.3g} {N} ({ratio:.2f}x "
                      f"the noise); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
         return "\n".join(lines)
 

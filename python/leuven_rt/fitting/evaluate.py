@@ -14,6 +14,7 @@ follow from the formula above.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -36,8 +37,10 @@ class Evaluation:
 
 
 def params_of(values: Values) -> Params:
-    friction = {key: value for key, value in values.friction.items() if value is not None}
-    return Params(**friction, W=tuple(float(w) for w in values.W), Delta=tuple(float(d) for d in values.Delta))
+    friction: dict[str, Any] = {key: value for key, value in values.friction.items() if value is not None}
+    return Params(
+        **friction, W=tuple(float(w) for w in values.W), Delta=tuple(float(d) for d in values.Delta)
+    )
 
 
 def trend_basis(x: FloatArray, scales: Scales) -> tuple[FloatArray, FloatArray]:
@@ -48,7 +51,9 @@ def trend_basis(x: FloatArray, scales: Scales) -> tuple[FloatArray, FloatArray]:
 def ripple_basis(x: FloatArray, period: float) -> list[FloatArray]:
     """cos(2πk·x/P) for k = 1…HARMONICS, then sin(2πk·x/P)."""
     phase = 2.0 * np.pi * np.mod(x / period, 1.0)
-    return [np.cos((k + 1) * phase) for k in range(HARMONICS)] + [np.sin((k + 1) * phase) for k in range(HARMONICS)]
+    return [np.cos((k + 1) * phase) for k in range(HARMONICS)] + [
+        np.sin((k + 1) * phase) for k in range(HARMONICS)
+    ]
 
 
 def series(x: FloatArray, scales: Scales, structure: Structure) -> list[FloatArray]:
@@ -75,7 +80,8 @@ def evaluate(
     params = params_of(values)
     friction, derivatives = _friction(params, motion, rows)
     v = motion.v
-    sigma2, sigma2_neg = float(values.friction["sigma2"] or 0.0), values.friction["sigma2_neg"]
+    given: dict[str, Any] = values.friction
+    sigma2, sigma2_neg = float(given["sigma2"] or 0.0), given["sigma2_neg"]
     viscous_coefficient = np.where(v < 0, sigma2 if sigma2_neg is None else float(sigma2_neg), sigma2)
     viscous = viscous_coefficient * v
     contact = friction - viscous
@@ -103,9 +109,9 @@ def evaluate(
     viscous_rows = np.zeros((int(rows.sum()), len(names)))
     positive = np.where(v >= 0, v, 0.0)[rows]
     negative = np.where(v < 0, v, 0.0)[rows]
-    column = {name: i for i, name in enumerate(FRICTION)}
-    viscous_rows += np.outer(positive, values.jacobian[column["sigma2"]])
-    viscous_rows += np.outer(negative, values.jacobian[column["sigma2_neg"]])
+    row_of = {name: i for i, name in enumerate(FRICTION)}
+    viscous_rows += np.outer(positive, values.jacobian[row_of["sigma2"]])
+    viscous_rows += np.outer(negative, values.jacobian[row_of["sigma2_neg"]])
     jac = factor[rows, None] * (d_friction - viscous_rows) + viscous_rows
     contact_rows = contact[rows]
     series_names = _series_names(structure, names) if basis else []
@@ -120,7 +126,9 @@ def evaluate(
     return Evaluation(values, force, jac)
 
 
-def _friction(params: Params, motion: Motion, rows: NDArray[np.bool_] | None) -> tuple[FloatArray, FloatArray | None]:
+def _friction(
+    params: Params, motion: Motion, rows: NDArray[np.bool_] | None
+) -> tuple[FloatArray, FloatArray | None]:
     """The friction model's force along ``motion`` (gms-core's step), and its derivatives by the
     friction parameters on ``rows`` when asked."""
     if rows is None:

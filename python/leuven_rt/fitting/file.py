@@ -28,7 +28,7 @@ def friction_params(values: Values) -> Params:
     """The friction model of ``values``, without elements of negligible weight."""
     weights = np.asarray(values.W, dtype=float)
     keep = weights > NEGLIGIBLE * float(weights.max())
-    friction = {key: value for key, value in values.friction.items() if value is not None}
+    friction: dict[str, Any] = {key: value for key, value in values.friction.items() if value is not None}
     return Params(
         **friction,
         W=tuple(float(w) for w in weights[keep]),

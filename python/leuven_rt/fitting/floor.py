@@ -24,8 +24,9 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
 from .._typing import FloatArray
-from ..data.reconstruction import Reconstruction, ambiguous_samples, filter_margin, resolution
+from ..data.reconstruction import ambiguous_samples, filter_margin, resolution
 from ..data.signals import lowpass
+from ..modelfile import Reconstruction
 from ..params import Params
 from ..simulation import simulate_position
 

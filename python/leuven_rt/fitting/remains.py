@@ -48,7 +48,9 @@ def _quantile_bins(values: FloatArray, rows: NDArray[np.bool_], bins: int) -> ND
     return np.searchsorted(edges, values).astype(np.int64)
 
 
-def functions(v: FloatArray, x: FloatArray, a: FloatArray, travel: FloatArray, rows: NDArray[np.bool_]) -> dict[str, NDArray[np.int64]]:
+def functions(
+    v: FloatArray, x: FloatArray, a: FloatArray, travel: FloatArray, rows: NDArray[np.bool_]
+) -> dict[str, NDArray[np.int64]]:
     """The bin index of every sample under each function of the predictor."""
     half = BINS // 2
     direction = (v < 0).astype(np.int64)
@@ -64,7 +66,9 @@ def functions(v: FloatArray, x: FloatArray, a: FloatArray, travel: FloatArray, r
     }
 
 
-def _fit(residual: FloatArray, table: dict[str, NDArray[np.int64]], train: NDArray[np.bool_]) -> dict[str, FloatArray]:
+def _fit(
+    residual: FloatArray, table: dict[str, NDArray[np.int64]], train: NDArray[np.bool_]
+) -> dict[str, FloatArray]:
     values = {name: np.zeros(int(index.max()) + 2) for name, index in table.items()}
     left = residual.copy()
     for _ in range(PASSES):
@@ -79,7 +83,9 @@ def _fit(residual: FloatArray, table: dict[str, NDArray[np.int64]], train: NDArr
     return values
 
 
-def _predict(values: dict[str, FloatArray], table: dict[str, NDArray[np.int64]], rows: NDArray[np.bool_]) -> dict[str, FloatArray]:
+def _predict(
+    values: dict[str, FloatArray], table: dict[str, NDArray[np.int64]], rows: NDArray[np.bool_]
+) -> dict[str, FloatArray]:
     out = {}
     for name, index in table.items():
         part = np.zeros(int(rows.sum()))

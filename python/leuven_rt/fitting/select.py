@@ -24,11 +24,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..data.reconstruction import (
-    Reconstruction,
     ambiguous_samples,
     filter_margin,
     noisy_position,
@@ -38,6 +36,7 @@ from ..data.reconstruction import (
 from ..data.records import MotionData
 from ..data.signals import residual_noise
 from ..errors import DataError
+from ..modelfile import Reconstruction
 from .evaluate import params_of
 from .floor import Floor, floor_estimate, with_reversals
 from .periods import find_period
@@ -151,7 +150,9 @@ class _Run:
     target: Target
 
 
-def _select_on(structure: Structure, target: Target, scales: Scales, settings: Settings, say: Progress) -> _Run:
+def _select_on(
+    structure: Structure, target: Target, scales: Scales, settings: Settings, say: Progress
+) -> _Run:
     """The rounds on ``target`` (module documentation)."""
     base = fit(structure, scales, target, _coulomb_viscous(target, structure))
     motion = target.motion
@@ -266,8 +267,8 @@ def _rounds(
         if not left:
             break
         say(f"round {len(steps) + 1}: trying {', '.join(left)}")
-        candidates = [_candidate(current, name, scales, target) for name in left]
-        candidates = [c for c in candidates if c is not None]
+        found = [_candidate(current, name, scales, target) for name in left]
+        candidates = [c for c in found if c is not None]
         tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
         best = _choose(current, candidates, target, settings, unit)
         if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
@@ -288,7 +289,10 @@ def _rounds(
             steps.append(Step(added[1], middle, chosen))
         else:
             steps.append(Step(added[0], current, chosen))
-        say(f"added {', '.join(added)}: weighted rms {math.sqrt(current.mse):.4g} -> {math.sqrt(chosen.mse):.4g}")
+        say(
+            f"added {', '.join(added)}: weighted rms {math.sqrt(current.mse):.4g} -> "
+            f"{math.sqrt(chosen.mse):.4g}"
+        )
         current = chosen
     return steps, current, tried
 
@@ -317,12 +321,16 @@ def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterat
     options = []
     for form, signal in (("level", residual * np.sign(target.motion.v)), ("force", residual)):
         period = find_period(target.motion.x, signal, rows)
-        structure = current.structure.with_effect(effect, form=form, periods=() if period is None else (period,))
+        structure = current.structure.with_effect(
+            effect, form=form, periods=() if period is None else (period,)
+        )
         options.append(fit(structure, scales, target, current.theta, iterations))
     return min(options, key=lambda fitted: fitted.mse)
 
 
-def _significant(current: Fitted, candidate: Fitted, target: Target, threshold: float, settings: Settings) -> bool:
+def _significant(
+    current: Fitted, candidate: Fitted, target: Target, threshold: float, settings: Settings
+) -> bool:
     """The candidate gains more than ``threshold`` in weighted mean squared error, and its gain
     is one-sided over ``settings.chunks`` runs of samples in time."""
     if not current.mse - candidate.mse > threshold:
@@ -411,7 +419,11 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     if reconstruction.source == "position":
         # Where the counts reverse only by the position's noise, the reversals to leave out are
         # those of the motion the model is driven by.
-        counted = motion.x if reconstruction.cutoff is not None and noisy_position(record.x, record.dt) else record.x
+        counted = (
+            motion.x
+            if reconstruction.cutoff is not None and noisy_position(record.x, record.dt)
+            else record.x
+        )
         weight[ambiguous_samples(counted, filter_margin(reconstruction, record.dt))] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)

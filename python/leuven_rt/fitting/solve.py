@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,11 +22,11 @@ require("scipy", extra="analysis", needed_by="leuven_rt.fitting")
 
 from scipy.optimize import least_squares  # noqa: E402
 
-from .._typing import FloatArray
-from ..data.reconstruction import Motion
-from ..errors import ParameterError
-from .evaluate import Evaluation, evaluate
-from .structure import Scales, Structure, bounds, start
+from .._typing import FloatArray  # noqa: E402
+from ..data.reconstruction import Motion  # noqa: E402
+from ..errors import ParameterError  # noqa: E402
+from .evaluate import Evaluation, evaluate  # noqa: E402
+from .structure import Scales, Structure, bounds, start  # noqa: E402
 
 #: The robust loss of scipy's least_squares used with a scale.
 LOSS = "cauchy"
@@ -121,6 +122,7 @@ def fit(
         theta = dict(fixed)
         theta.update(zip(names, x.tolist(), strict=True))
         return theta
+
     rows = target.rows
     root_weight = np.sqrt(target.weight[rows])
     measured = target.force[rows]
@@ -155,8 +157,17 @@ def fit(
         theta = full(x0)
         final = evaluate(structure, scales, theta, target.motion, target.tau, None)
         return Fitted(structure, theta, final, target.mse(final.force), 1)
-    robustly = {} if target.scale is None else {"loss": LOSS, "f_scale": target.scale / scales.force}
-    result = least_squares(lambda x: both(x)[0], x0, jac=lambda x: both(x)[1], bounds=(low, high),
+    robustly: dict[str, Any] = (
+        {} if target.scale is None else {"loss": LOSS, "f_scale": target.scale / scales.force}
+    )
+
+    def residual(x: FloatArray) -> FloatArray:
+        return both(x)[0]
+
+    def jacobian(x: FloatArray) -> FloatArray:
+        return both(x)[1]
+
+    result = least_squares(residual, x0, jac=jacobian, bounds=(low, high),
                            x_scale="jac", max_nfev=iterations, method="trf", ftol=1e-10, xtol=1e-10,
                            gtol=1e-10, **robustly)  # fmt: skip
     theta = full(result.x)

@@ -11,8 +11,8 @@ coordinates that keep every candidate inside the model's rules with simple bound
 | ``viscous`` | ``sigma2`` | σ2 |
 | ``stribeck`` | ``Fs_rise``, ``log_Vs``, ``delta`` | Fs = Fc + Fs_rise, Vs = exp(log_Vs), δ |
 | ``asymmetry`` | ``Fc_neg``, ``Fs_neg_rise``, ``sigma2_neg`` | the −x levels and viscous coefficient |
-| ``presliding_hysteresis`` | ``log_margin``, ``n``, ``sigma1``, ``share_0…share_N`` | W = shares/Σshares · margin · max(Fs, Fs_neg) on a fixed grid of Δ, n, σ1 |
-| ``position_dependence`` | ``level_*`` or ``force_*`` | the level's or the position force's trend and ripples |
+| ``presliding_hysteresis`` | ``log_margin``, ``n``, ``sigma1``, shares | W over a grid of Δ, n, σ1 |
+| ``position_dependence`` | ``level_*`` or ``force_*`` | the trend and ripples |
 | ``offset``, ``inertia`` | ``offset``, ``inertia`` | the measurement terms |
 
 Without ``presliding_hysteresis`` the hysteresis is one stiff element (Δ below what the log
@@ -71,7 +71,9 @@ def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tup
     items = [name for name in items if name]
     if any(not isinstance(name, str) for name in items):
         raise InputError(
-            f"`{argument}` must be effect names (strings), got {shown(items)!r}", kind="wrong_type", field=argument
+            f"`{argument}` must be effect names (strings), got {shown(items)!r}",
+            kind="wrong_type",
+            field=argument,
         )
     unknown = [name for name in items if name not in CATALOGUE]
     if unknown:
@@ -101,7 +103,9 @@ class Structure:
     def has(self, effect: str) -> bool:
         return effect in self.effects
 
-    def with_effect(self, effect: str, *, form: str | None = None, periods: Iterable[float] = ()) -> Structure:
+    def with_effect(
+        self, effect: str, *, form: str | None = None, periods: Iterable[float] = ()
+    ) -> Structure:
         if effect == "position_dependence":
             return replace(self, effects=self.effects | {effect}, form=form, periods=tuple(periods))
         return replace(self, effects=self.effects | {effect})
@@ -196,7 +200,14 @@ def bounds(structure: Structure, scales: Scales, elements: int) -> tuple[FloatAr
     for name in structure.names() + structure.share_names(elements):
         if name in ("Fc", "Fc_neg"):
             lo, hi = tiny, math.inf
-        elif name in ("sigma1", "sigma2", "sigma2_neg", "Fs_rise", "Fs_neg_rise", "inertia") or name.startswith("share_"):
+        elif name in (
+            "sigma1",
+            "sigma2",
+            "sigma2_neg",
+            "Fs_rise",
+            "Fs_neg_rise",
+            "inertia",
+        ) or name.startswith("share_"):
             lo, hi = 0.0, math.inf
         elif name == "log_Vs":
             lo, hi = math.log(scales.speed_low), math.log(scales.speed_high)
@@ -217,7 +228,9 @@ def bounds(structure: Structure, scales: Scales, elements: int) -> tuple[FloatAr
     return np.array(low), np.array(high)
 
 
-def start(structure: Structure, scales: Scales, elements: int, previous: Mapping[str, float]) -> dict[str, float]:
+def start(
+    structure: Structure, scales: Scales, elements: int, previous: Mapping[str, float]
+) -> dict[str, float]:
     """θ where a candidate starts: the values of the model it extends, and for the new effect the
     values at which it adds nothing (Fs = Fc, −x levels = +x levels, a bank with all its weight
     on the stiff element, a flat level, no force), so that a candidate starts exactly at the model
@@ -310,7 +323,8 @@ def unpack(structure: Structure, scales: Scales, theta: Mapping[str, float]) -> 
                 jac[len(FRICTION), index[name]] += STIFF_MARGIN
         used = deltas[:1]
     friction: dict[str, float | tuple[float, ...] | None] = {
-        "Fc": fc, "Fs": fs, "Vs": vs, "delta": delta, "n": n, "sigma1": theta.get("sigma1", 0.0), "sigma2": sigma2,
+        "Fc": fc, "Fs": fs, "Vs": vs, "delta": delta, "n": n, "sigma1": theta.get("sigma1", 0.0),
+        "sigma2": sigma2,
         "Fc_neg": fc_neg if asymmetric else None, "Fs_neg": fs_neg if asymmetric else None,
         "sigma2_neg": sigma2_neg if asymmetric else None,
     }  # fmt: skip
@@ -345,4 +359,16 @@ def _series(
     return trend, ripples
 
 
-__all__ = ["CATALOGUE", "FORMS", "FRICTION", "HARMONICS", "Scales", "Structure", "Values", "bounds", "parse_effects", "start", "unpack"]
+__all__ = [
+    "CATALOGUE",
+    "FORMS",
+    "FRICTION",
+    "HARMONICS",
+    "Scales",
+    "Structure",
+    "Values",
+    "bounds",
+    "parse_effects",
+    "start",
+    "unpack",
+]

@@ -60,7 +60,8 @@ class Undetermined:
     def warning(self) -> str:
         return (
             f"`{self.name}` = {self.value:.4g} is not determined by this excitation (standard error "
-            f"{self.error:.3g}): the file holds {self.kept:.4g}, which adds no force beyond what the log shows"
+            f"{self.error:.3g}): the file holds {self.kept:.4g}, "
+            "which adds no force beyond what the log shows"
         )
 
 
