@@ -119,7 +119,7 @@ def select(
     """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
     say = progress or (lambda _: None)
     structure = Structure(frozenset(baseline))
-    reconstruction = rounds_reconstruction(record)
+    reconstruction = rounds_reconstruction(record, structure)
     target, scales = prepare(record, reconstruction)
     run = _select_on(structure, target, scales, settings, say)
     target = run.target
@@ -352,16 +352,34 @@ def _choose(
     return min(close, key=lambda c: (len(c.theta), c.mse))
 
 
-def rounds_reconstruction(record: MotionData) -> Reconstruction:
+def rounds_reconstruction(record: MotionData, structure: Structure | None = None) -> Reconstruction:
     """The reconstruction the rounds name effects under: the logged velocity where there is one,
-    else the raw encoder position, whose ambiguous reversals are known to the sample; a position
-    whose noise reverses it (:func:`~leuven_rt.data.reconstruction.noisy_position`) through the
-    lighter of the low-passes."""
+    else the raw encoder position, whose ambiguous reversals are known to the sample. Where the
+    counts reverse much more often than the motion's low-pass does
+    (:func:`~leuven_rt.data.reconstruction.noisy_position`), they may be noise (a joint's position
+    estimate) or real (a servo hunting about its set point): the baseline ``structure`` is fitted
+    under the raw position and under the lighter of the low-passes, over every sample, and the
+    one that predicts the log better is taken."""
     if record.v is not None:
         return Reconstruction("velocity")
-    if noisy_position(record.x, record.dt):
-        return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
-    return Reconstruction("position")
+    raw = Reconstruction("position")
+    if structure is None or not noisy_position(record.x, record.dt):
+        return raw
+    errors = {}
+    for option in (raw, Reconstruction("position", FILTERS[0] * 0.5 / record.dt)):
+        target, scales = prepare(record, option)
+        target = dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None)
+        base = fit(structure, scales, target, _coulomb_viscous(target, structure), SCREEN)
+        errors[option] = full_mse(base, target)
+    return min(errors, key=lambda option: errors[option])
+
+
+def _every_sample(samples: int) -> FloatArray:
+    """Weight 1 on every sample but the filters' edges."""
+    edge = min(EDGE, samples // 10)
+    weight = np.ones(samples)
+    weight[:edge], weight[samples - edge :] = 0.0, 0.0
+    return weight
 
 
 def reconstruction_options(record: MotionData) -> list[Reconstruction]:
@@ -397,10 +415,7 @@ def choose_reconstruction(
             target, scales = prepare(record, reconstruction)
         except DataError:
             continue
-        edge = min(EDGE, record.t.size // 10)
-        weight = np.ones(record.t.size)
-        weight[:edge], weight[weight.size - edge :] = 0.0, 0.0
-        target = dataclasses.replace(target, weight=weight, scale=None)
+        target = dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None)
         refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
         error = full_mse(refitted, target)
         if best is None or error < best[0]:
