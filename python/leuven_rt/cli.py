@@ -117,12 +117,14 @@ def _folder_outputs(out: str, names: Sequence[str], force: bool) -> Path:
 
 
 def _demo(arguments: argparse.Namespace) -> int:
-    from .studies.demo import FILES, run_demo, run_story
+    from .studies.demo import FILES, run_demo, run_loop, run_story
 
     out = _folder_outputs(arguments.out, FILES, arguments.force)
     print(run_demo(out).text())
     print()
     print(run_story(out, progress=True).text())
+    print()
+    print(run_loop(progress=True).text())
     return 0
 
 
@@ -224,7 +226,10 @@ def _predict(arguments: argparse.Namespace) -> int:
 def _control(arguments: argparse.Namespace) -> int:
     from .studies.closed_loop import FILE, run
 
-    print(run(_folder_outputs(arguments.out, [FILE], arguments.force)))
+    out = _folder_outputs(arguments.out, [FILE], arguments.force)
+    with _progress(arguments) as report:
+        text = run(out, progress=report)
+    print(text)
     return 0
 
 
@@ -235,8 +240,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
         "demo",
-        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; "
-        "write figures",
+        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects, then "
+        "identify a simulated stage from its log and compensate it in closed loop; write figures",
     )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.add_argument("--force", action="store_true", help=FORCE_HELP)
@@ -312,10 +317,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     _add_log_options(predict, units=None)  # the model file says its units; --units only confirms them
     predict.set_defaults(run=_predict)
     control = commands.add_parser(
-        "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
+        "control",
+        help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation, hand-set "
+        "and identified from a log of the stage",
     )
     control.add_argument("--out", default="out", help="folder for the figure (default: out)")
     control.add_argument("--force", action="store_true", help=FORCE_HELP)
+    control.add_argument("--quiet", action="store_true", help="no progress of the identification (on stderr)")
     control.set_defaults(run=_control)
     arguments = parser.parse_args(argv)
     try:
