@@ -89,10 +89,22 @@ def position_terms(draw: st.DrawFn) -> dict[str, Any] | None:
     }
 
 
-scalars = st.none() | st.booleans() | st.integers(-(10**20), 10**20) | st.text(max_size=8)
+# Empty containers are leaves: a container the recursion draws holds at least one value, since
+# hypothesis deprecates an `extend` that can come back without drawing from its argument.
+scalars = (
+    st.none()
+    | st.booleans()
+    | st.integers(-(10**20), 10**20)
+    | st.text(max_size=8)
+    | st.just([])
+    | st.just({})
+)
 json_values = st.recursive(
     scalars | st.floats(allow_nan=False, allow_infinity=False),
-    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=6), inner, max_size=3),
+    lambda inner: (
+        st.lists(inner, min_size=1, max_size=3)
+        | st.dictionaries(st.text(max_size=6), inner, min_size=1, max_size=3)
+    ),
     max_leaves=10,
 )
 

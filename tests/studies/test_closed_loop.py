@@ -4,7 +4,7 @@ tracks with an RMS error at least 3x smaller than without compensation and 1.5x 
 with Coulomb-only compensation, in both modes (feedforward and observer). The stage logged on
 another trajectory and identified from that log (encoder and actuator force only) should give a
 compensator at least as good as the hand-set one, in tracking RMS and in the reversal glitch:
-asserted, and an expected failure with this engine (ROUNDS_ON_A_LOW_PASS)."""
+asserted."""
 
 from __future__ import annotations
 
@@ -37,12 +37,6 @@ MODES = ("feedforward", "observer")
 #: Driven through the low-pass at 100 Hz, the presliding candidate gains nothing (3e-12 units) and
 #: the rounds name only the inertia on 6 of the seeds 0-7. With the rounds on the raw encoder, as
 #: before noisy_position, every assertion below holds (and on every seed 0-7).
-ROUNDS_ON_A_LOW_PASS = pytest.mark.xfail(
-    strict=True,
-    reason="identify's rounds drive this closed-loop encoder log through a low-pass (noisy_position "
-    "takes the servo's hunting for noise); the presliding candidate gains nothing there, and "
-    "only inertia is named",
-)
 
 
 @pytest.fixture(scope="module")
@@ -89,7 +83,6 @@ def test_runs_are_what_they_claim(comparison: Comparison) -> None:
     assert residual("leuven_feedforward") < 0.5 * residual("coulomb")
 
 
-@ROUNDS_ON_A_LOW_PASS
 def test_the_identified_model_predicts_the_friction_better_than_the_hand_set_one(
     comparison: Comparison,
 ) -> None:
@@ -128,7 +121,6 @@ def test_the_identification_log_is_what_a_controller_logs(comparison: Comparison
     assert not run.compensation_force.any()  # logged under the PID alone
 
 
-@ROUNDS_ON_A_LOW_PASS
 def test_the_identification_names_what_the_stage_has(comparison: Comparison) -> None:
     """From coulomb, viscous: the Stribeck curve and the presliding hysteresis of the true
     friction, and the inertia of the actuator force (the mass, to 5 %); nothing the stage does
@@ -146,7 +138,6 @@ def test_the_identification_names_what_the_stage_has(comparison: Comparison) -> 
     assert identified.identification.warnings == ()
 
 
-@ROUNDS_ON_A_LOW_PASS
 @pytest.mark.parametrize("mode", MODES)
 def test_the_identified_compensator_is_at_least_as_good_as_the_hand_set_one(
     comparison: Comparison, mode: str
@@ -157,7 +148,6 @@ def test_the_identified_compensator_is_at_least_as_good_as_the_hand_set_one(
     assert identified.max <= hand_set.max
 
 
-@ROUNDS_ON_A_LOW_PASS
 def test_the_identified_compensator_holds_on_a_faster_trajectory(comparison: Comparison) -> None:
     """The same identification (the log does not depend on the evaluation trajectory) at twice
     the frequency: still at least as good as the hand-set model."""

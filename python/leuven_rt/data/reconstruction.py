@@ -38,6 +38,8 @@ from .signals import check_cutoff, lowpass
 
 #: A position whose counts reverse this many times as often as its low-passed version is noisy.
 SPURIOUS = 4
+#: ... and whose noise exceeds this many counts.
+NOISE_COUNTS = 2.0
 #: The acceleration's cutoff is at most this share of the Nyquist frequency.
 ACCELERATION_CUTOFF = 0.1
 
@@ -143,11 +145,19 @@ def reversals(x: FloatArray) -> int:
 def noisy_position(x: FloatArray, dt: float) -> bool:
     """Whether the position's own noise reverses it: its counts change direction more than
     :data:`SPURIOUS` times as often as the position through a low-pass at a twentieth of the
-    Nyquist frequency does. An encoder's counts reverse only where the motion does; a position
-    read with noise (a joint's position estimate, an analogue sensor) reverses at every other
-    sample of slow motion, and its raw differences are not the motion."""
+    Nyquist frequency does, and its sample-to-sample noise (the robust spread of its second
+    differences over √6) is more than :data:`NOISE_COUNTS` counts. An encoder's counts jitter by
+    a count, and reverse where the motion does (a servo hunting about its set point reverses for
+    real); a position read with noise (a joint's position estimate, an analogue sensor) jumps by
+    many counts and reverses at every other sample of slow motion: its raw differences are not
+    the motion."""
     cutoff = 0.05 * 0.5 / dt
-    if x.size < 8 or not cutoff * x.size * dt >= 8.0:
+    step = resolution(x)
+    if x.size < 8 or not cutoff * x.size * dt >= 8.0 or not step > 0:
+        return False
+    second = np.diff(x, 2)
+    spread = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / math.sqrt(6.0)
+    if not spread > NOISE_COUNTS * step:
         return False
     return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)
 

@@ -119,7 +119,7 @@ def select(
     """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
     say = progress or (lambda _: None)
     structure = Structure(frozenset(baseline))
-    reconstruction = rounds_reconstruction(record, structure)
+    reconstruction = rounds_reconstruction(record)
     target, scales = prepare(record, reconstruction)
     run = _select_on(structure, target, scales, settings, say)
     target = run.target
@@ -352,26 +352,16 @@ def _choose(
     return min(close, key=lambda c: (len(c.theta), c.mse))
 
 
-def rounds_reconstruction(record: MotionData, structure: Structure | None = None) -> Reconstruction:
+def rounds_reconstruction(record: MotionData) -> Reconstruction:
     """The reconstruction the rounds name effects under: the logged velocity where there is one,
-    else the raw encoder position, whose ambiguous reversals are known to the sample. Where the
-    counts reverse much more often than the motion's low-pass does
-    (:func:`~leuven_rt.data.reconstruction.noisy_position`), they may be noise (a joint's position
-    estimate) or real (a servo hunting about its set point): the baseline ``structure`` is fitted
-    under the raw position and under the lighter of the low-passes, over every sample, and the
-    one that predicts the log better is taken."""
+    else the raw encoder position, whose ambiguous reversals are known to the sample; a position
+    whose noise reverses it (:func:`~leuven_rt.data.reconstruction.noisy_position`) through the
+    lighter of the low-passes."""
     if record.v is not None:
         return Reconstruction("velocity")
-    raw = Reconstruction("position")
-    if structure is None or not noisy_position(record.x, record.dt):
-        return raw
-    errors = {}
-    for option in (raw, Reconstruction("position", FILTERS[0] * 0.5 / record.dt)):
-        target, scales = prepare(record, option)
-        target = dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None)
-        base = fit(structure, scales, target, _coulomb_viscous(target, structure), SCREEN)
-        errors[option] = full_mse(base, target)
-    return min(errors, key=lambda option: errors[option])
+    if noisy_position(record.x, record.dt):
+        return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
+    return Reconstruction("position")
 
 
 def _every_sample(samples: int) -> FloatArray:
