@@ -140,7 +140,10 @@ def _identification(
     ]  # fmt: skip
     travel = travel_since_reversal(motion.x, motion.v)
     table = functions(motion.v, motion.x, motion.a, travel, usable)
-    left = remains(residuals[-1], run.target.weight, table)
+    # Judged on the rounds' final model, fitted on the samples a model can place: the written
+    # file also answers for the reversals no model can place, a compromise that is not a missing
+    # effect.
+    left = remains(record.f - run.without_drift.force, run.target.weight, table)
     significant = run.drift or left.gain > settings.unexplained * run.unit
     where = layout.where_unexplained(residuals[-1], run.noise, force)
     if run.drift:
