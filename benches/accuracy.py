@@ -1,7 +1,7 @@
 """Prints the explicit-vs-implicit accuracy tables: ``python benches/accuracy.py``.
 
 The numbers come from :func:`leuven_rt.studies.accuracy.full_report` (velocity- and force-driven);
-the README quotes this output.
+docs/benchmarks.md#accuracy-of-the-step quotes this output.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Speed of leuven_rt, the numbers the README quotes: ``python benches/bench.py [--quick]``.
+"""Speed of leuven_rt, the numbers docs/benchmarks.md quotes: ``python benches/bench.py [--quick]``.
 
 Three measurements, each against the target the product brief sets:
 

@@ -64,11 +64,11 @@ c = lr.Compensator(p, 1e-3, mode="observer")
 forces = [c.step(x) for x in 1e-4 * (1 - np.cos(2 * np.pi * t[:1000]))]
 assert np.all(np.isfinite(f)) and max(abs(x) for x in forces) > 1.0
 try:
-    import leuven_rt.identification
+    import leuven_rt.discrepancy
 except ImportError as error:
     assert "leuven-rt[analysis]" in str(error), error
 else:
-    raise AssertionError("leuven_rt.identification imported without scipy")
+    raise AssertionError("leuven_rt.discrepancy imported without scipy")
 print(f"lean core ok (leuven-rt {lr.__version__}, numpy {np.__version__})")
 '
 analysis='

@@ -6,7 +6,11 @@ so that every test can pass them to either implementation or to ``Params``.
 
 from __future__ import annotations
 
+import ctypes
 import json
+import shutil
+import subprocess
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -185,3 +189,62 @@ class IdentifyStandIn:
 
     def summary(self) -> str:
         return "fitted"
+
+
+# --- the C library, for the tests that compare it with Python ---------------------------------
+
+#: LEUVEN_RT_ERROR_MESSAGE_SIZE of include/leuven_rt.h.
+MESSAGE_SIZE = 160
+
+
+class CError(ctypes.Structure):
+    """``struct leuven_rt_error``."""
+
+    _fields_ = [
+        ("field", ctypes.c_char_p),
+        ("index", ctypes.c_size_t),
+        ("message", ctypes.c_char * MESSAGE_SIZE),
+    ]
+
+
+def built_c_library() -> ctypes.CDLL:
+    """The C library of this checkout (``cargo build -p gms-ffi``, debug; the path from cargo's
+    own report of what it built), with the argument types of the calls the tests make. Skips
+    the calling test where cargo is not on PATH."""
+    if shutil.which("cargo") is None:
+        pytest.skip("cargo is not on PATH: the C library cannot be built to compare with")
+    command = ["cargo", "build", "--quiet", "-p", "gms-ffi", "--message-format=json"]
+    root = Path(__file__).parents[1]
+    done = subprocess.run(command, cwd=root, capture_output=True, text=True, timeout=1200, check=False)
+    assert done.returncode == 0, done.stderr
+    built = [
+        name
+        for line in done.stdout.splitlines()
+        if (message := json.loads(line)).get("reason") == "compiler-artifact"
+        and message["target"]["name"] == "gms_ffi"
+        for name in message["filenames"]
+        if name.endswith(".so")
+    ]
+    assert built, "cargo built no libgms_ffi.so"
+    library = ctypes.CDLL(built[0])
+    handle, status = ctypes.c_void_p, ctypes.c_int32
+    library.leuven_rt_compensator_create_from_json.argtypes = [
+        ctypes.c_char_p, ctypes.c_size_t, ctypes.c_double, ctypes.c_int32,
+        ctypes.POINTER(handle), ctypes.POINTER(CError),
+    ]  # fmt: skip
+    library.leuven_rt_compensator_create_from_json_at.argtypes = [
+        ctypes.c_char_p, ctypes.c_size_t, ctypes.c_double, ctypes.c_int32, ctypes.c_double,
+        ctypes.POINTER(handle), ctypes.POINTER(CError),
+    ]  # fmt: skip
+    library.leuven_rt_compensator_step.argtypes = [handle, ctypes.c_double, ctypes.POINTER(ctypes.c_double)]
+    library.leuven_rt_compensator_step_trajectory.argtypes = [
+        handle,
+        ctypes.c_double,
+        ctypes.c_double,
+        ctypes.POINTER(ctypes.c_double),
+    ]
+    for name in ("create_from_json", "create_from_json_at", "step", "step_trajectory"):
+        getattr(library, f"leuven_rt_compensator_{name}").restype = status
+    library.leuven_rt_compensator_destroy.argtypes = [handle]
+    library.leuven_rt_compensator_destroy.restype = None
+    return library

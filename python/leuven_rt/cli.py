@@ -61,7 +61,7 @@ class EffectNames:
 
     def __str__(self) -> str:
         try:
-            from .discrepancy.effects import CATALOGUE
+            from .fitting.structure import CATALOGUE
         except ImportError:  # the analysis extra is not installed
             return "the effects of docs/effects.md (with leuven-rt[analysis])"
         return ", ".join(CATALOGUE)
@@ -117,12 +117,14 @@ def _folder_outputs(out: str, names: Sequence[str], force: bool) -> Path:
 
 
 def _demo(arguments: argparse.Namespace) -> int:
-    from .studies.demo import FILES, run_demo, run_story
+    from .studies.demo import FILES, run_demo, run_loop, run_story
 
     out = _folder_outputs(arguments.out, FILES, arguments.force)
     print(run_demo(out).text())
     print()
     print(run_story(out, progress=True).text())
+    print()
+    print(run_loop(progress=True).text())
     return 0
 
 
@@ -194,11 +196,10 @@ def _predict(arguments: argparse.Namespace) -> int:
     from .modelfile import ModelFile
     from .prediction import predict
 
-    target = check_outputs(
-        [("-o/--output", arguments.output, False)],
-        inputs=[arguments.model, arguments.data],
-        force=arguments.force,
-    )[0]
+    outputs: list[tuple[str, str, bool]] = [("-o/--output", arguments.output, False)]
+    if arguments.plot is not None:
+        outputs.append(("--plot", arguments.plot, True))
+    target = check_outputs(outputs, inputs=[arguments.model, arguments.data], force=arguments.force)[0]
     model = ModelFile.load(arguments.model)
     if arguments.units is not None and arguments.units != model.units:
         raise InputError(
@@ -212,10 +213,10 @@ def _predict(arguments: argparse.Namespace) -> int:
     prediction = predict(model, _load(arguments), cutoff=arguments.cutoff)
     # The target was checked before the work; force here: only a file made meanwhile can be in the way.
     prediction.to_csv(target, force=True)
+    if arguments.plot is not None:
+        prediction.plot(arguments.plot, force=True)
     if arguments.json:
-        summary = {"rms": prediction.rms, "samples": prediction.samples, "units": prediction.units,
-                   "warnings": list(prediction.notes)}  # fmt: skip
-        print(json.dumps(summary))
+        print(json.dumps(prediction.to_dict()))
     else:
         print(prediction.summary())
         print(f"prediction: {arguments.output}")
@@ -225,7 +226,10 @@ def _predict(arguments: argparse.Namespace) -> int:
 def _control(arguments: argparse.Namespace) -> int:
     from .studies.closed_loop import FILE, run
 
-    print(run(_folder_outputs(arguments.out, [FILE], arguments.force)))
+    out = _folder_outputs(arguments.out, [FILE], arguments.force)
+    with _progress(arguments) as report:
+        text = run(out, progress=report)
+    print(text)
     return 0
 
 
@@ -236,8 +240,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     commands = parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser(
         "demo",
-        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects; "
-        "write figures",
+        help="simulate the presliding-to-sliding scenario, then diagnose a log with hidden effects, then "
+        "identify a simulated stage from its log and compensate it in closed loop; write figures",
     )
     demo.add_argument("--out", default="out", help="folder for the figures (default: out)")
     demo.add_argument("--force", action="store_true", help=FORCE_HELP)
@@ -297,19 +301,29 @@ def main(argv: Sequence[str] | None = None) -> int:
     predict.add_argument("data", help=LOG_HELP)
     predict.add_argument("-o", "--output", required=True, help="where to write the prediction (CSV)")
     predict.add_argument(
-        "--json", action="store_true", help='print {"rms", "samples", "units", "warnings"} as JSON on stdout'
+        "--json",
+        action="store_true",
+        help='print {"rms", "rms_causal", "samples", "units", "reconstruction", "warnings"} as JSON',
     )
     predict.add_argument(
-        "--cutoff", type=float, help="cutoff of the position filter [Hz] (default: Nyquist/10)"
+        "--cutoff",
+        type=float,
+        help="the low-pass cutoff [Hz] of the motion signal, in place of the model file's reconstruction",
+    )
+    predict.add_argument(
+        "--plot", help="also draw the measured and predicted force here (.png, .pdf, .svg, …)"
     )
     predict.add_argument("--force", action="store_true", help=FORCE_HELP)
     _add_log_options(predict, units=None)  # the model file says its units; --units only confirms them
     predict.set_defaults(run=_predict)
     control = commands.add_parser(
-        "control", help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation"
+        "control",
+        help="closed-loop proof: PID on a simulated stage with none/Coulomb/Leuven compensation, hand-set "
+        "and identified from a log of the stage",
     )
     control.add_argument("--out", default="out", help="folder for the figure (default: out)")
     control.add_argument("--force", action="store_true", help=FORCE_HELP)
+    control.add_argument("--quiet", action="store_true", help="no progress of the identification (on stderr)")
     control.set_defaults(run=_control)
     arguments = parser.parse_args(argv)
     try:

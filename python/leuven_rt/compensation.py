@@ -17,10 +17,17 @@ x ← x + v·dt, from the axis's start position ``x`` given at construction (or 
 ``set_position``): a feedforward compensator with a level or a position force and no start
 position is refused, since its terms would be placed from x = 0, out of phase with the machine
 (docs/model.md#position-dependent-level).
+
+The model may be given as a model file (a :class:`~leuven_rt.ModelFile` or the path of one, as
+``identify`` writes it): the compensator then runs the file's friction model with its level and
+position force, exactly as ``predict`` runs the file (its ``friction`` column). The file's
+measurement terms (offset, inertia) describe the force sensor, not the friction, and are not
+added.
 """
 
 from __future__ import annotations
 
+from os import PathLike
 from typing import cast
 
 from . import _core
@@ -28,9 +35,29 @@ from ._checks import as_step
 from ._typing import Mode
 from .errors import InputError, shown
 from .level import PositionForce, PositionLevel, core_level, core_position_force
+from .modelfile import ModelFile
 from .params import Params, ParamsLike, as_params, core_params
 
 MODES: tuple[Mode, ...] = ("feedforward", "observer")
+
+
+def _from_model_file(
+    model: ModelFile | str | PathLike[str], level: PositionLevel | None, position_force: PositionForce | None
+) -> tuple[Params, PositionLevel | None, PositionForce | None]:
+    """The friction model, level and position force of a model file (or of the file at a path:
+    read by the one reader, gms-file); the file holds its own terms, so none may be given too."""
+    for name, given in (("level", level), ("position_force", position_force)):
+        if given is not None:
+            raise InputError(
+                f"`{name}` must be None when the model is a model file (the file holds its own), "
+                f"got a {type(given).__name__}",
+                kind="not_applicable",
+                field=name,
+                value=given,
+                expected=None,
+            )
+    file = model if isinstance(model, ModelFile) else ModelFile.load(model)
+    return file.friction, file.level, file.position_force
 
 
 class Compensator(_core.CompensatorEngine):
@@ -57,7 +84,7 @@ class Compensator(_core.CompensatorEngine):
 
     def __new__(
         cls,
-        params: ParamsLike,
+        params: ParamsLike | ModelFile | str | PathLike[str],
         dt: float,
         mode: Mode = "feedforward",
         level: PositionLevel | None = None,
@@ -73,6 +100,8 @@ class Compensator(_core.CompensatorEngine):
                 value=mode,
                 expected=MODES,
             )
+        if isinstance(params, (ModelFile, str, PathLike)):
+            params, level, position_force = _from_model_file(params, level, position_force)
         given = as_params(params)
         validated_level = None if level is None else core_level(level)
         validated_force = None if position_force is None else core_position_force(position_force)

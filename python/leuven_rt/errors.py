@@ -79,8 +79,8 @@ PYTHON_KINDS = frozenset(
         "gap",
         "implausible_units",
         "no_motion",
+        "no_sliding_motion",
         "wrong_sign",
-        "not_identifiable",
         # output paths
         "empty_path",
         "is_input",

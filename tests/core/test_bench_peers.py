@@ -1,8 +1,9 @@
-"""The numba peers of benches/peers.py compute the library's step: otherwise the README's ratios
-would compare two different things. The bench itself refuses to print a ratio for a peer that
-disagrees with ``leuven_rt.simulate`` by more than 1e-12 (implicit) or 1e-6 (explicit, past its
-stability limit at the bench's parameters), relative to the largest force; here it runs small,
-with a channel count that leaves channels outside the batch kernel's groups of eight."""
+"""The numba peers of benches/peers.py compute the library's step: otherwise the ratios of
+docs/benchmarks.md would compare two different things. The bench itself refuses to print a ratio
+for a peer that disagrees with ``leuven_rt.simulate`` by more than 1e-12 (implicit) or 1e-6
+(explicit, past its stability limit at the bench's parameters), relative to the largest force;
+here it runs small, with a channel count that leaves channels outside the batch kernel's groups
+of eight."""
 
 from __future__ import annotations
 

@@ -556,7 +556,7 @@ def test_errors_raised_in_python_carry_their_data(
 
 
 def test_effect_names_are_refused_with_the_choices() -> None:
-    from leuven_rt.discrepancy.effects import CATALOGUE, parse_effects
+    from leuven_rt.fitting.structure import CATALOGUE, parse_effects
 
     error = refusal(lambda: parse_effects("coulomb,sticky"))
     assert (error.kind, error.field, error.value, error.expected) == (

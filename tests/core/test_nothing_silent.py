@@ -18,7 +18,6 @@ import pytest
 import leuven_rt as lr
 from conftest import MAXWELL, small_log
 from leuven_rt.errors import ConcurrentUseError, DataError, InputError, ModelFileError, ParameterError
-from leuven_rt.identification import identify_staged
 
 DT = 1e-4
 V = 1e-3 * np.sin(np.linspace(0.0, 6.0, 200))
@@ -104,7 +103,7 @@ def test_huge_integers_are_parameter_and_input_errors() -> None:
         lr.LeuvenModel(MAXWELL).step(1e-3, 10**400)
     assert (refused.value.kind, refused.value.field) == ("not_real", "dt")
     with pytest.raises(InputError, match=r"`cutoff` must be finite") as refused:
-        identify_staged(small_log(), cutoff=10**400)
+        lr.predict(lr.Params(**MAXWELL), small_log(), cutoff=10**400)
     assert (refused.value.kind, refused.value.field) == ("not_finite_value", "cutoff")
 
 
@@ -145,24 +144,16 @@ def test_a_parameter_file_that_is_not_utf8_is_a_parameter_error(tmp_path: Path) 
     assert refused.value.kind == "unreadable_file"
 
 
-def test_identify_refuses_options_that_are_not_numbers() -> None:
-    """identify(cutoff='10') was accepted (read as 10 Hz); an asymmetric flag that is not a bool
-    was read as truthy."""
+def test_predict_refuses_a_cutoff_that_is_not_a_number() -> None:
+    """A cutoff of '10' was accepted (read as 10 Hz)."""
     for cutoff in ("10", True):
         with pytest.raises(InputError, match=rf"`cutoff` must be a real number, got {cutoff!r}") as refused:
-            identify_staged(small_log(), cutoff=cutoff)  # type: ignore[arg-type]
+            lr.predict(lr.Params(**MAXWELL), small_log(), cutoff=cutoff)  # type: ignore[arg-type]
         assert (refused.value.kind, refused.value.field, refused.value.value) == (
             "not_real",
             "cutoff",
             cutoff,
         )
-    with pytest.raises(InputError, match=r"`asymmetric` must be True or False, got 'no'") as refused:
-        identify_staged(small_log(), asymmetric="no")  # type: ignore[arg-type]
-    assert (refused.value.kind, refused.value.field, refused.value.value) == (
-        "wrong_type",
-        "asymmetric",
-        "no",
-    )
 
 
 @pytest.mark.parametrize("baseline", [None, 3, b"coulomb", {"coulomb": 1}])
@@ -327,12 +318,10 @@ def _non_increasing_log() -> dict[str, Any]:
 
 NUMPY_SCALARS = [
     pytest.param(lambda: lr.identify(_non_increasing_log()), id="t-not-increasing"),
-    pytest.param(lambda: identify_staged(small_log(), held_out=np.float64(0.9)), id="held_out"),
-    pytest.param(lambda: identify_staged(small_log(), elements=np.int64(40)), id="elements"),
-    pytest.param(lambda: identify_staged(small_log(), max_evaluations=np.int64(1)), id="max_evaluations"),
+    pytest.param(lambda: lr.predict(lr.Params(**MAXWELL), small_log(), cutoff=np.float64(1e9)), id="cutoff"),
     pytest.param(lambda: lr.simulate(MAXWELL, V, DT, np.str_("rk4")), id="scheme"),  # type: ignore[arg-type]
     pytest.param(lambda: lr.LeuvenModel(MAXWELL, channels=np.float64(2.0)), id="channels"),  # type: ignore[arg-type]
-    pytest.param(lambda: lr.discrepancy.Settings(folds=np.int64(1)), id="settings"),
+    pytest.param(lambda: lr.discrepancy.Settings(chunks=np.int64(1)), id="settings"),
     pytest.param(lambda: lr.Params(**{**MAXWELL, "W": [np.float64(0.5), [0.5], 0.5, 0.5]}), id="W-nested"),
     pytest.param(lambda: lr.Params(**{**MAXWELL, "Fc": np.str_("1")}), id="Fc-text"),
     pytest.param(

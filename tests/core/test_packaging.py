@@ -74,7 +74,7 @@ def test_public_face_works_without_the_extras() -> None:
 @pytest.mark.parametrize(
     ("module", "extra"),
     [
-        ("leuven_rt.identification", "analysis"),
+        ("leuven_rt.fitting.select", "analysis"),
         ("leuven_rt.discrepancy", "analysis"),
         ("leuven_rt.data", "analysis"),
         ("leuven_rt.prediction", "analysis"),

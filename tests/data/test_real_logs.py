@@ -27,7 +27,6 @@ from leuven_rt.data import as_motion_data, estimate_derivatives
 from leuven_rt.data.records import MAX_SIGN_DISAGREEMENT, load_csv, velocity_agreement
 from leuven_rt.data.signals import MIN_CUTOFF_PERIODS, check_cutoff
 from leuven_rt.errors import DataError, ResamplingWarning, UnitsWarning
-from leuven_rt.identification import identify_staged
 
 SHARED = Path(__file__).resolve().parents[2].parent / "shared"
 HOLDOUT = SHARED / "data" / "holdout-v2"
@@ -110,14 +109,6 @@ def test_a_cutoff_at_or_above_nyquist_or_not_positive_is_refused(cutoff: float) 
     assert check_cutoff(499.0, log.dt, log.samples) == 499.0
     with pytest.raises(DataError, match=r"`cutoff` must be a real number, got 'fast'"):
         check_cutoff("fast", log.dt, log.samples)
-
-
-def test_the_staged_fit_checks_its_cutoff_on_what_it_filters() -> None:
-    """identify_staged filters the training part (the first 75 %: 300 samples, 26.7 Hz at least)."""
-    with pytest.raises(
-        DataError, match=r"`cutoff` must be at least 26\.7 Hz for a record of 0\.3 s \(300 samples\)"
-    ):
-        identify_staged(small_log(), cutoff=1e-5)
 
 
 @pytest.mark.parametrize("cutoff", ["1e-6", "1e-5", "500"])

@@ -1,12 +1,9 @@
-"""From a log to the loop: the paper's generated logs through ``diagnose``, a position ripple found
-with its period, the model file ``identify`` writes run by a compensator exactly as ``predict``
-runs it, the thresholds' checks, the noise floor on white and coloured noise, a drift left
-unexplained, and the real robot logs of ../shared identified without a refusal.
+"""From a log to the loop: the paper's generated log through ``identify`` (named exactly, the
+written file at the noise), a position ripple found with its period, the model file run by a
+compensator exactly as ``predict`` runs it, the thresholds' checks, the noise floor on white and
+coloured noise, and the real robot logs of ../shared identified without a refusal.
 
-Measured on make_data (the paper's model: Stribeck and presliding hysteresis, σ1 = 30 N·s/m,
-white noise 0.02 N, dt = 0.2 ms, 31 166 samples) with the baseline coulomb,viscous: seeds 0..9
-all name exactly {stribeck, presliding_hysteresis}, but the final rms stays near 7x the true
-noise std (0.137-0.140 N against 0.02 N), so the 1.2x target is not asserted here.
+``benches/make_data.py`` runs the paper's log over seeds 0-9; here seed 0.
 """
 
 from __future__ import annotations
@@ -30,25 +27,23 @@ from leuven_rt.discrepancy.hidden import make_hidden
 from leuven_rt.errors import InputError, ResamplingWarning
 
 BASE = ("coulomb", "viscous")
-
-# --- 1. the paper's generated logs --------------------------------------------------------------
-
-#: Seeds of make_data run here (each diagnose takes about a minute; seeds 0-2 were measured).
-SEEDS = (0,)
-#: For the slow tests: more than the suite's 300 s, for a shared, loaded machine.
+#: For the real logs and the paper's: more than the suite's 300 s, for a shared, loaded machine.
 SLOW = pytest.mark.timeout(900)
+
+# --- 1. the paper's generated log ----------------------------------------------------------------
 
 
 @SLOW
-@pytest.mark.parametrize("seed", SEEDS)
-def test_make_data_names_the_papers_two_effects(seed: int) -> None:
-    synthetic = make_data(seed=seed)
-    diagnosis = lr.diagnose(synthetic.data, "coulomb,viscous")
+def test_make_data_names_the_papers_two_effects_and_the_file_reaches_the_noise() -> None:
+    synthetic = make_data(seed=0)
+    identification = lr.identify(synthetic.data, "coulomb,viscous")
+    diagnosis = identification.diagnosis
     assert sorted(diagnosis.named_effects) == ["presliding_hysteresis", "stribeck"], diagnosis.story()
-    # the noise floor the workflow reads is the generator's noise, within 10 %
+    # the noise the workflow reads is the generator's, within 10 %
     assert diagnosis.noise_std == pytest.approx(synthetic.noise_std, rel=0.1)
-    # the two effects take most of the baseline's error away (measured: 0.59 N -> 0.14 N)
-    assert diagnosis.rms_after < 0.3 * diagnosis.rms_before, diagnosis.story()
+    assert lr.predict(identification.model, synthetic.data).rms <= 1.2 * synthetic.noise_std, (
+        diagnosis.story()
+    )
 
 
 # --- 2. and 3. a periodic ripple, and the model file in a compensator ---------------------------
@@ -87,24 +82,28 @@ def ripple() -> Identification:
     return lr.identify(ripple_log(), BASE)
 
 
-@SLOW
 def test_a_position_ripple_is_named_with_its_period(ripple: Identification) -> None:
     diagnosis = ripple.diagnosis
     assert diagnosis.named_effects == ["position_dependence"], diagnosis.story()
     (step,) = diagnosis.steps
-    assert step.params["period1"] == pytest.approx(RIPPLE_PERIOD, rel=0.02)
-    # the ripple's own coefficient (sgn(v)·sin(2πx/P), times Fc = 1 N)
-    assert step.params["Fc_R1_sin1"] == pytest.approx(RIPPLE_AMPLITUDE, rel=0.1)
+    assert step.params["form"] == "level"
+    (period,) = step.params["periods"]
+    assert period == pytest.approx(RIPPLE_PERIOD, rel=0.02)
+    level = ripple.model.level
+    assert level is not None
+    (harmonics,) = level.ripples
+    # the ripple's own coefficient: the level is 1 + 0.15·sin(2πx/P)
+    assert harmonics.sin[0] == pytest.approx(RIPPLE_AMPLITUDE, rel=0.1)
     assert diagnosis.rms_after <= 1.2 * RIPPLE_NOISE, diagnosis.story()
 
 
-@SLOW
 def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
     model = ripple.model
     assert model.level is not None and len(model.level.ripples) == 1  # the level is exercised
     assert model.level.ripples[0].period == pytest.approx(RIPPLE_PERIOD, rel=0.02)
     prediction = lr.predict(model, ripple_log())
-    compensator = Compensator(model.friction, prediction.dt, mode="observer", level=model.level)
+    assert model.reconstruction is not None and model.reconstruction.source == "position"
+    compensator = Compensator(model, prediction.dt, mode="observer")
     stepped = np.array([compensator.step(float(x)) for x in prediction.x])
     # forces of about 1 N: 1e-9 N is far below anything but rounding
     np.testing.assert_allclose(stepped, prediction.friction, rtol=0.0, atol=1e-9)
@@ -117,8 +116,7 @@ def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
 @pytest.mark.parametrize(
     ("name", "value"),
     [
-        ("folds", 1), ("folds", 2.0), ("folds", True), ("folds", "4"),
-        ("chunks", 1), ("chunks", -3), ("chunks", None),
+        ("chunks", 1), ("chunks", -3), ("chunks", None), ("chunks", 2.0), ("chunks", True),
         ("significance", -0.1), ("significance", math.nan),
         ("loss", math.inf), ("loss", "0.2"),
         ("joint", -1.0), ("joint", False),
@@ -127,25 +125,26 @@ def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
     ],
 )  # fmt: skip
 def test_bad_settings_are_refused_naming_the_field(name: str, value: Any) -> None:
-    with pytest.raises(InputError, match=rf"^`settings\.{name}` must be "):
+    with pytest.raises(InputError, match=rf"^`settings\.{name}` must be ") as caught:
         Settings(**{name: value})
+    assert caught.value.field == f"settings.{name}"
 
 
 def test_settings_of_another_type_are_refused() -> None:
     data = make_hidden(BASE, dt=8e-4).data
-    with pytest.raises(InputError, match=r"`settings` must be a leuven_rt\.discrepancy\.Settings or None"):
+    with pytest.raises(InputError, match=r"`settings` must be a leuven_rt\.fitting\.Settings or None"):
         lr.diagnose(data, BASE, settings=object())  # type: ignore[arg-type]
     with pytest.raises(InputError, match=r"`settings` must be"):
-        lr.diagnose(data, BASE, settings={"folds": 4})  # type: ignore[arg-type]
+        lr.diagnose(data, BASE, settings={"chunks": 4})  # type: ignore[arg-type]
 
 
 def test_the_report_echoes_the_settings() -> None:
-    chosen = Settings(folds=3, chunks=8, significance=0.6, loss=0.25, joint=1.5, drift=1.2, unexplained=0.3)
+    chosen = Settings(chunks=8, significance=0.6, loss=0.25, joint=1.5, drift=1.2, unexplained=0.3)
     diagnosis = lr.diagnose(make_hidden(BASE, dt=8e-4, seed=3).data, BASE, settings=chosen)
-    assert diagnosis.settings is chosen
+    assert diagnosis.settings == chosen.to_dict()
     report = json.loads(diagnosis.to_json())
     assert report["settings"] == {
-        "folds": 3, "chunks": 8, "significance": 0.6, "loss": 0.25, "joint": 1.5, "drift": 1.2,
+        "chunks": 8, "significance": 0.6, "loss": 0.25, "joint": 1.5, "drift": 1.2,
         "unexplained": 0.3,
     }  # fmt: skip
 
@@ -189,17 +188,7 @@ def test_noise_floor_of_coloured_noise(seed: int) -> None:
     assert short == pytest.approx(math.sqrt(1.0 - AR) * SIGMA, rel=0.1)
 
 
-# --- 6. a drift ------------------------------------------------------------------------------------
-
-
-def test_a_drift_names_nothing_and_stays_unexplained() -> None:
-    diagnosis = lr.diagnose(make_hidden(BASE, drift=True).data, BASE)
-    assert diagnosis.named_effects == [], diagnosis.story()
-    assert diagnosis.drift is True, diagnosis.story()
-    assert diagnosis.unexplained_significant is True, diagnosis.story()
-
-
-# --- 7. the real robot logs ------------------------------------------------------------------------
+# --- 6. the real robot logs ------------------------------------------------------------------------
 
 ROBOTS = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "robots"
 RECORDS = [

@@ -60,7 +60,9 @@ def test_predict_writes_the_csv_and_the_json_summary(
     captured = capsys.readouterr()
     summary = json.loads(captured.out)
     expected = predict(files["model"], files["log"])
-    assert summary == {"rms": expected.rms, "samples": expected.samples, "units": "linear", "warnings": []}
+    assert summary == expected.to_dict()
+    assert summary["rms"] == expected.rms and summary["warnings"] == []
+    assert set(summary) == {"rms", "rms_causal", "samples", "units", "reconstruction", "warnings"}
     assert summary["rms"] < 1.05 * synthetic.noise_std
     table = np.loadtxt(out, delimiter=",", skiprows=1)
     assert out.read_text(encoding="utf-8").startswith("t,f,f_model,friction\n")

@@ -12,7 +12,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import leuven_rt.discrepancy.refine
 from leuven_rt.cli import main
 
 PROGRESS = re.compile(r"^leuven-rt (identify|diagnose): \d\d:\d\d:\d\d (?P<text>.*)$")
@@ -51,23 +50,19 @@ def _run(argv: list[str]) -> tuple[str, list[str]]:
 def test_diagnose_reports_its_stages_as_lines_and_keeps_stdout_for_json(log: Path) -> None:
     out, texts = _run(["diagnose", str(log), "--json"])
     assert json.loads(out)["samples"] == 3000  # stdout is the report alone
-    assert texts[0] == "signals"
-    fits = [text for text in texts if text.startswith("fits ")]
-    assert fits and re.fullmatch(r"fits 0/\d+ \(\w+\)", fits[0])
-    done, total = map(int, fits[-1].split()[1].split("/"))
-    assert done == total > 0
+    assert texts[0] == "selecting effects"
+    rounds = [text for text in texts if text.startswith("round ")]
+    assert rounds and re.fullmatch(r"round 1: trying [a-z_, ]+", rounds[0])
+    assert texts[-1] == "the model file and its prediction"
     out, texts = _run(["diagnose", str(log), "--json", "--quiet"])
     assert texts == [] and json.loads(out)["samples"] == 3000
 
 
-def test_identify_reports_the_fit_and_the_refinement(
-    log: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setattr(leuven_rt.discrepancy.refine, "EVALUATIONS", 2)  # a short refinement
+def test_identify_reports_the_rounds_and_the_file(log: Path, tmp_path: Path) -> None:
     out, texts = _run(["identify", str(log), "-o", str(tmp_path / "model.json")])
     assert "model file (linear)" in out
-    stages = list(dict.fromkeys(text.split()[0] for text in texts))
-    assert stages == ["signals", "fits", "model", "refinement"], texts
-    assert any(re.fullmatch(r"refinement( \d+)? \(simulations\)", text) for text in texts)
+    assert texts[0] == "selecting effects"
+    assert "choosing how the written file reconstructs the motion" in texts
+    assert texts[-2:] == ["the parameters the excitation determines", "the model file and its prediction"]
     _, texts = _run(["identify", str(log), "-o", str(tmp_path / "quiet.json"), "--quiet"])
     assert texts == []

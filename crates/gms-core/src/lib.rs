@@ -55,12 +55,9 @@ pub use model::{LeuvenParams, LuGreParams, Params, Scheme, State};
 pub use solver::{PieceEquation, Solution, MAX_ITERATIONS};
 pub use stribeck::Stribeck;
 
-// The README's Rust snippets run as doctests of this crate, so the README cannot drift from the API.
-#[cfg(doctest)]
-#[doc = include_str!("../../../README.md")]
-struct ReadmeSnippets;
-
-// The crate's own README (the page of the published crate) is tested the same way.
+// The crate's own README (the page of the published crate) runs as doctests of this crate, so it
+// cannot drift from the API. (The workspace README's Rust snippet reads a model file, so it runs
+// in gms-file, whose dependencies it uses.)
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct CrateReadme;

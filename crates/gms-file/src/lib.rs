@@ -55,6 +55,12 @@ pub use file::{
 };
 pub use validate::Model;
 
+// The workspace README's Rust snippets run as doctests of this crate, so the README cannot drift
+// from the API: its snippet reads a model file (this crate) into a compensator (gms-dyn, gms-core).
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeSnippets;
+
 /// The value of `format` that marks a model file.
 pub const FORMAT: &str = "leuven-rt model";
 

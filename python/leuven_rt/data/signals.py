@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy import signal
 
 from .._checks import real_number
@@ -18,7 +19,7 @@ from ..errors import DataError
 from .records import MotionData
 
 #: The fewest periods of the cutoff a record must hold: the zero-phase filter's transients last
-#: about two periods at each end (docs/effects.md#signals), and far below one period per record
+#: about two periods at each end (docs/data-and-reports.md#measured-data), and far below one period per record
 #: the filter's design is singular (a LinAlgError at 1e-6 Hz) or passes nothing of the motion.
 #: The default cutoff, a tenth of the Nyquist frequency, gives ten on the shortest record.
 MIN_CUTOFF_PERIODS = 8
@@ -93,6 +94,33 @@ def estimate_derivatives(data: MotionData, cutoff: float | None = None, order: i
     return Derivatives(x=x, v=v, a=np.gradient(v, dt), cutoff=cutoff)
 
 
+#: Lags [samples] at which the noise of a model's residual is read.
+RESIDUAL_LAGS = (1, 2, 4, 8, 16, 32, 64)
+
+
+def residual_noise(residual: FloatArray, rows: NDArray[np.bool_] | None = None) -> float:
+    """Standard deviation of the noise in what a model leaves, white or coloured.
+
+    As :func:`noise_floor`, from robust differences over a lag that doubles until the estimate
+    settles (rises by less than PLATEAU), but without stopping where the growth speeds up: a
+    model's residual has none of the force's own fast changes, and coloured noise settles only
+    after a few correlation times (a 20 Hz noise sampled at 1 kHz: lag 16). Only differences
+    between two samples both among ``rows`` count.
+    """
+    estimates: list[float] = []
+    for lag in RESIDUAL_LAGS:
+        differences = residual[lag:] - residual[:-lag]
+        if rows is not None:
+            differences = differences[rows[lag:] & rows[:-lag]]
+        if differences.size <= 2 * lag:
+            break
+        spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
+        estimates.append(spread / math.sqrt(2.0))
+        if len(estimates) >= 2 and estimates[-1] < (1.0 + PLATEAU) * estimates[-2]:
+            return max(estimates[-2:])
+    return estimates[-1] if estimates else 0.0
+
+
 def decimate(values: FloatArray, factor: int) -> FloatArray:
     """Low-pass (8th-order Chebyshev I at 0.8 of the new Nyquist frequency, zero phase) and keep
     one sample in ``factor``: MATLAB's and scipy's ``decimate``."""
@@ -107,7 +135,7 @@ NOISE_LAGS = (1, 2, 4, 8, 16)
 PLATEAU = 0.05
 
 
-def noise_floor(force: FloatArray) -> float:
+def noise_floor(force: FloatArray, rows: NDArray[np.bool_] | None = None) -> float:
     """Standard deviation of the noise on ``force``, white or coloured.
 
     From differences over a lag L: 1.4826·MAD(f[k+L] − f[k])/√2 (robust, so that steps at reversals
@@ -116,12 +144,19 @@ def noise_floor(force: FloatArray) -> float:
     of real logs), so the lag doubles while the estimate grows. Coloured noise grows less at each
     doubling and settles (rises by less than PLATEAU); the force's own changes grow more at each
     doubling: when the growth speeds up, the estimate before it is kept.
+
+    ``rows``: only differences between two samples that are both among these count (a fit's
+    weighted samples: what a model leaves at reversals an encoder cannot place is not noise).
     """
     estimates: list[float] = []
     for lag in NOISE_LAGS:
         if force.size <= 2 * lag:
             break
         differences = force[lag:] - force[:-lag]
+        if rows is not None:
+            differences = differences[rows[lag:] & rows[:-lag]]
+            if differences.size <= 2 * lag:
+                break
         spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
         estimates.append(spread / math.sqrt(2.0))
         if len(estimates) >= 2:

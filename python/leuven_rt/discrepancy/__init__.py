@@ -1,15 +1,13 @@
-"""The discrepancy workflow: point it at a log of a machine, and it names what the friction model
-is missing (the effect catalogue of docs/effects.md), where, and how much better the model gets.
+"""Log to loop: point it at a log of a machine, and it writes the friction model the log supports
+(:func:`identify`, a model file the compensator runs) and tells how it got there
+(:func:`diagnose`): where the baseline model and the data disagree, which effects of the
+catalogue (docs/effects.md) it named, how the gap shrank, and what remains.
 
-:mod:`.features` (signals), :mod:`.effects` (the catalogue), :mod:`.drive` (the presliding
-bank driven by the model's state), :mod:`.model` (fits),
-:mod:`.scoring` (blocked cross-validation, significance), :mod:`.localise` (where, in numbers),
-:mod:`.diagnose` (the rounds), :mod:`.settings` (its thresholds), :mod:`.ripple` (periods of
-a position ripple), :mod:`.deploy` and :mod:`.identify` (the model file of the final model),
-:mod:`.report` (JSON of docs/data-and-reports.md#diagnosis-report),
-:mod:`.plot` (figure), :mod:`.hidden` (generated data with hidden effects, to test it on).
-
-It works from the data toolkit :mod:`leuven_rt.data`, not from the identification workflow.
+The fit is :mod:`leuven_rt.fitting` (the output-error engine); this room adds the story:
+:mod:`.identify` (the model file and its report), :mod:`.diagnose`, :mod:`.report` (the JSON of
+docs/data-and-reports.md#diagnosis-report and the sentences), :mod:`.localise` (where, in
+numbers), :mod:`.plot` (the figure) and :mod:`.hidden` (generated logs with hidden effects, to
+try it on).
 """
 
 from .._extras import require
@@ -17,11 +15,11 @@ from .._extras import require
 require("scipy", "tqdm", "threadpoolctl", extra="analysis", needed_by="leuven_rt.discrepancy")
 
 
-from .diagnose import DEFAULT_BASELINE, diagnose
-from .effects import CATALOGUE, parse_effects
-from .identify import Identification, identify
+from ..fitting.settings import Settings
+from ..fitting.structure import CATALOGUE, parse_effects
+from .diagnose import diagnose
+from .identify import DEFAULT_BASELINE, Identification, identify
 from .report import Diagnosis, Step
-from .settings import Settings
 
 __all__ = [
     "CATALOGUE",

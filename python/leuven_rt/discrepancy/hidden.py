@@ -5,16 +5,19 @@ the excitation of :mod:`leuven_rt.data.synthetic`; the effects named in ``truth`
 
 - ``coulomb`` is always there (the model needs Fc > 0); ``viscous``: σ2 = :data:`SIGMA2`;
 - ``stribeck``: Fs = 1.5·Fc (otherwise Fs = Fc); ``asymmetry``: the −x levels at 0.7 of the +x
-  ones (Fc_neg, Fs_neg, and σ2 for v < 0);
+  ones (Fc_neg, Fs_neg, sigma2_neg);
 - ``presliding_hysteresis``: Maxwell-slip elements up to a 10 µm presliding range; without it
   the elements end at :data:`STIFF_RANGE`, below the encoder's resolution, so presliding is
   invisible in the data;
+- ``position_dependence``: a level (:class:`~leuven_rt.PositionLevel`) that scales the contact
+  force linearly along the stroke, ±:data:`POSITION_SLOPE` at its ends;
 - the other effects are added to the simulated friction: ``offset`` (a bias), ``inertia``
-  (m·ẍ of the true motion), ``position_dependence`` (the level changes linearly along the
-  stroke), and, outside the catalogue, ``drift`` (the level grows linearly over time).
+  (m·ẍ of the true motion), and, outside the catalogue, ``drift`` (the level grows linearly over
+  time).
 
 The log is the truth plus white force noise, the position quantized; ``with_velocity`` adds a
-``v`` column (the true velocity), otherwise only x is given.
+``v`` column (the true velocity: the one the friction was simulated with, the differences of the
+true position over each step), otherwise only x is given.
 """
 
 from __future__ import annotations
@@ -27,9 +30,10 @@ import numpy as np
 from .._typing import FloatArray
 from ..data.records import MotionData
 from ..data.synthetic import excitation
+from ..fitting.structure import parse_effects
+from ..level import PositionLevel
 from ..params import Params
 from ..simulation import simulate_position
-from .effects import parse_effects
 
 FC = 1.0  # N
 SIGMA2 = 10.0  # N·s/m
@@ -39,7 +43,7 @@ STIFF_RANGE = 1e-12  # m
 ASYMMETRY = 0.7
 OFFSET = 0.3  # N
 MASS = 0.05  # kg
-POSITION_SLOPE = 0.25  # N across half the stroke
+POSITION_SLOPE = 0.25  # relative change of the level across half the stroke
 DRIFT = 0.4  # N over the record
 
 
@@ -63,7 +67,9 @@ def make_hidden(
     effects = parse_effects(list(truth), "truth")
     rng = np.random.default_rng(seed)
     x_true = excitation(dt, PRESLIDING_RANGE, VS, rng)
-    v_true = np.gradient(x_true, dt)
+    # The velocity simulate_position steps with (v₀ = 0, vₖ = (xₖ − xₖ₋₁)/dt): the log's `v` is
+    # then the velocity the truth saw.
+    v_true = np.concatenate([[0.0], np.diff(x_true) / dt])
     asymmetric = "asymmetry" in effects
     span = PRESLIDING_RANGE if "presliding_hysteresis" in effects else STIFF_RANGE
     index = np.arange(1, elements + 1)
@@ -73,25 +79,27 @@ def make_hidden(
     params = Params(
         Fc=FC, Fs=fs, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=sigma2,
         W=tuple(weights), Delta=tuple(span * index / elements),
-        **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs} if asymmetric else {}),
+        **({"Fc_neg": ASYMMETRY * FC, "Fs_neg": ASYMMETRY * fs, "sigma2_neg": ASYMMETRY * sigma2}
+           if asymmetric else {}),
     )  # fmt: skip
-    force = simulate_position(params, x_true, dt)
-    # The direction the added terms follow is that of a unit Coulomb level (one element below the
-    # encoder's resolution) through the same simulator, so that they flip on the same sample as
-    # the friction's Coulomb part; position dependence changes that level, not the presliding.
+    level = None
+    if "position_dependence" in effects:
+        # The contact force (presliding included) scales with the position, as a normal load
+        # that varies along the stroke scales it.
+        middle, half = 0.5 * (x_true.max() + x_true.min()), 0.5 * np.ptp(x_true)
+        level = PositionLevel(middle=float(middle), half_stroke=float(half), trend=(POSITION_SLOPE, 0.0))
+    force = simulate_position(params, x_true, dt, level=level)
+    # The direction a drift follows is that of a unit Coulomb level (one element below the
+    # encoder's resolution) through the same simulator, so that it flips on the same sample as
+    # the friction's Coulomb part.
     unit = Params(
         Fc=1.0, Fs=1.0, Vs=VS, delta=2.0, n=2.0, sigma1=0.0, sigma2=0.0, W=(1.02,), Delta=(STIFF_RANGE,)
     )
     direction = simulate_position(unit, x_true, dt)
-    if asymmetric:
-        force += (ASYMMETRY - 1.0) * sigma2 * np.minimum(v_true, 0.0)
     if "offset" in effects:
         force += OFFSET
     if "inertia" in effects:
         force += MASS * np.gradient(v_true, dt)
-    if "position_dependence" in effects:
-        middle, half = 0.5 * (x_true.max() + x_true.min()), 0.5 * np.ptp(x_true)
-        force += POSITION_SLOPE * direction * (x_true - middle) / half
     if drift:
         force += DRIFT * direction * np.linspace(0.0, 1.0, x_true.size)
     measured = force + rng.normal(0.0, noise_std, force.size)

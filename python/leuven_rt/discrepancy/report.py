@@ -1,5 +1,8 @@
-"""The diagnosis report: the JSON object of docs/data-and-reports.md#diagnosis-report, plus the
-per-region numbers and the residuals kept for the figure and for people."""
+"""The diagnosis report: the JSON object of docs/data-and-reports.md#diagnosis-report, the
+story in sentences, and the residuals kept for the figure.
+
+Every rms in it is the model file's: the force of the step's model simulated along the log as
+:func:`leuven_rt.predict` simulates the written file, over every sample."""
 
 from __future__ import annotations
 
@@ -9,19 +12,18 @@ from typing import Any
 
 from .._typing import FloatArray
 from ..units import Units, unit_names
-from .features import Features
-from .localise import Region
-from .model import ModelFit
-from .settings import Settings
+from .localise import Layout, Region
 
 
 @dataclass(frozen=True)
 class Step:
+    """One effect added: where it helped, the rms before and after, its parameters in the file."""
+
     effect: str
     where: str
     rms_before: float
     rms_after: float
-    params: dict[str, float]
+    params: dict[str, Any]
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,6 +33,11 @@ class Diagnosis:
 
     samples: int
     noise_std: float
+    floor_estimate: float
+    """The error the right model would still have with this log's motion signal [N or N·m]."""
+    reconstruction: dict[str, Any]
+    gross_errors: int
+    """Samples the fit left out as gross errors (beyond 5 times the noise of the final model)."""
     baseline: tuple[str, ...]
     rms_before: float
     rms_after: float
@@ -39,15 +46,19 @@ class Diagnosis:
     unexplained_where: str
     drift: bool
     """The friction level changes over the record (outside the catalogue); fitted alongside."""
-    settings: Settings
-    final_model: ModelFit
+    settings: dict[str, Any]
+    final_model: dict[str, Any]
+    """The model file's object without its report: what the compensator runs."""
     regions_before: list[Region]
     regions_after: list[Region]
-    features: Features = field(repr=False)
+    layout: Layout = field(repr=False)
+    t: FloatArray = field(repr=False)
+    v: FloatArray = field(repr=False)
+    x: FloatArray = field(repr=False)
+    travel: FloatArray = field(repr=False)
     residuals: list[FloatArray] = field(repr=False)
-    """In-sample residual of the baseline, then after each step (every sample)."""
+    """The residual of the baseline, then of each step's model (every sample)."""
     units: Units = "linear"
-    """The log's kind of axis: the unit names of the story and the figure."""
 
     @property
     def named_effects(self) -> list[str]:
@@ -57,6 +68,9 @@ class Diagnosis:
         return {
             "samples": self.samples,
             "noise_std": self.noise_std,
+            "floor_estimate": self.floor_estimate,
+            "reconstruction": self.reconstruction,
+            "gross_errors": self.gross_errors,
             "baseline": list(self.baseline),
             "rms_before": self.rms_before,
             "rms_after": self.rms_after,
@@ -76,8 +90,8 @@ class Diagnosis:
                 "where": self.unexplained_where,
                 "drift": self.drift,
             },
-            "settings": self.settings.to_dict(),
-            "final_model": self.final_model.to_dict(),
+            "settings": self.settings,
+            "final_model": self.final_model,
         }
 
     def to_json(self) -> str:
@@ -86,19 +100,43 @@ class Diagnosis:
     def story(self) -> str:
         """The diagnosis in sentences, with the numbers."""
         N = unit_names(self.units).force
-        lines = [f"{self.samples} samples; force noise floor {self.noise_std:.3g} {N}",
-                 f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} {N}",
-                 "where the baseline and the data disagree (residual rms by region):"]  # fmt: skip
+        lines = [
+            f"{self.samples} samples; force noise {self.noise_std:.3g} {N}; the floor this log allows "
+            f"{self.floor_estimate:.3g} {N} (the error of the right model driven by what the log gives)",
+            f"the model is driven by {self.reconstruction['description']}",
+            *(
+                [
+                    f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors "
+                    "the model cannot explain (beyond 5 times the noise); the fit leaves them out"
+                ]
+                if self.gross_errors
+                else []
+            ),
+            f"baseline model ({', '.join(self.baseline) or 'nothing'}): rms {self.rms_before:.3g} {N}",
+            "where the baseline and the data disagree (residual rms by region):",
+        ]
         for region in sorted(self.regions_before, key=lambda r: -r.rms):
             lines.append(f"  {region.name:<38} rms {region.rms:8.3g} {N}  mean {region.mean:+9.3g} {N}  "
                          f"({region.share:.0%} of samples)")  # fmt: skip
         for number, step in enumerate(self.steps, 1):
-            values = ", ".join(f"{key} = {value:.4g}" for key, value in step.params.items())
+            values = ", ".join(f"{key} = {_show(value)}" for key, value in step.params.items())
             lines.append(f"step {number}: missing `{step.effect}` ({values}); rms {step.rms_before:.3g} -> "
                          f"{step.rms_after:.3g} {N}; where: {step.where}")  # fmt: skip
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
-        verdict = "significant" if self.unexplained_significant else "at the noise floor"
-        lines.append(f"final model: rms {self.rms_after:.3g} {N} ({self.rms_after / self.noise_std:.2f}x "
-                     f"the noise floor); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
+        verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
+        ratio = self.rms_after / max(self.noise_std, 1e-300)
+        lines.append(f"final model: rms {self.rms_after:.3g} {N} ({ratio:.2f}x "
+                     f"the noise); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
         return "\n".join(lines)
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_show(item) for item in value) + "]"
+    return str(value)
+
+
+__all__ = ["Diagnosis", "Step"]

@@ -7,7 +7,8 @@ draws through :mod:`leuven_rt._plot`.
   (``leuven-rt accuracy``);
 - :mod:`.closed_loop`: PID on a simulated stage with and without compensation
   (``leuven-rt control``);
-- :mod:`.emps`: the EMPS benchmark's figure of merit for a diagnosed model.
+- :mod:`.emps`: the EMPS benchmark's figure of merit for a model file;
+- :mod:`.idim`: the benchmark's own inverse-model least squares (IDIM-LS), reproduced.
 
 Studies may import every room of the package but the command line.
 """

@@ -174,7 +174,7 @@ def report(
     rates: Sequence[float] = (100.0, 1000.0, 10000.0),
     refine: int = 100,
 ) -> str:
-    """The accuracy tables the README quotes: one per sine amplitude, with the stability numbers.
+    """The accuracy tables of docs/benchmarks.md: one per sine amplitude, with the stability numbers.
 
     Linearised, the state equation is dz/dt = v − (|v|·σ0/g)·z, so forward Euler is stable only
     while dt·|v|·σ0/g(v) < 2. At the 10 mm/s of docs/model.md#accuracy-of-the-schemes that number

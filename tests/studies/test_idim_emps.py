@@ -1,7 +1,8 @@
-"""EMPS benchmark (Janot, Gautier, Brunot 2019): the IDIM-LS fit of the inverse model
-force = M·q̈ + Fv·q̇ + Fc·sign(q̇) + offset on DATA_EMPS.mat, with the benchmark's preprocessing
-(Butterworth 4th order at 100 Hz, zero phase; central differences; decimation by 10), reproduces
-the published estimates within 2 % and the relative error 4.08 % within 0.2 points.
+"""EMPS benchmark (Janot, Gautier, Brunot 2019), the published study reproduced: the IDIM-LS fit
+of the inverse model force = M·q̈ + Fv·q̇ + Fc·sign(q̇) + offset on DATA_EMPS.mat, with the
+benchmark's preprocessing (Butterworth 4th order at 100 Hz, zero phase; central differences;
+decimation by 10), reproduces the published estimates within 2 % and the relative error 4.08 %
+within 0.2 points.
 
 The data lives outside the repository (../shared/data/emps); without it these tests skip.
 """
@@ -14,7 +15,8 @@ import numpy as np
 import pytest
 import scipy.io
 
-from leuven_rt.identification import as_motion_data, fit_inverse_model, load_columns
+from leuven_rt.data import as_motion_data, load_columns
+from leuven_rt.studies.idim import fit_inverse_model
 
 EMPS = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "emps"
 

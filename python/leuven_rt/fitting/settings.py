@@ -1,7 +1,9 @@
-"""The thresholds of the discrepancy workflow, in one object that :func:`leuven_rt.diagnose` takes
-and its report echoes. Every threshold is in units of the noise (σ² of the force noise floor) or
-a plain count, never a share of the current error, so that the same evidence counts the same
-whether the model is far from the data or close to it."""
+"""The thresholds of the rounds, in one object that :func:`leuven_rt.identify` and
+:func:`leuven_rt.diagnose` take and their reports echo. Every threshold is a plain count or a
+multiple of the unit of evidence, max(σ², floor²): the force noise σ or, where the log cannot do
+better, the floor of the error the right model would still have with this log's motion signal
+(docs/effects.md#the-floor). Never a share of the current error, so that the same evidence counts
+the same whether the model is far from the data or close to it."""
 
 from __future__ import annotations
 
@@ -14,27 +16,27 @@ from ..errors import InputError, shown
 
 @dataclass(frozen=True, kw_only=True)
 class Settings:
-    """What counts as evidence in :func:`leuven_rt.diagnose` (docs/effects.md#how-an-effect-is-chosen)."""
+    """What counts as evidence in :func:`leuven_rt.identify` and :func:`leuven_rt.diagnose`
+    (docs/effects.md#how-an-effect-is-chosen); "unit" is max(σ², floor²)."""
 
-    folds: int = 4
-    """Contiguous blocks of the cross-validation in time."""
     chunks: int = 16
     """Contiguous runs of held-out samples over which a gain must be one-sided."""
     significance: float = 0.5
-    """An effect counts when it lowers the held-out mean squared error by more than this many σ²."""
+    """An effect counts when it lowers the held-out mean squared error by more than this many units."""
     loss: float = 0.2
     """... and the runs where it does worse lose less than this share of what the others gain."""
     joint: float = 1.0
     """When no single effect counts but the held-out mean squared error exceeds σ² by more than this
-    many σ², pairs of effects are tried together."""
+    many units, pairs of effects are tried together."""
     drift: float = 1.0
     """A friction level drifting over the record is fitted alongside (and reported) when it lowers
-    the final model's held-out mean squared error by more than this many σ² (one-sided as above)."""
+    the final model's held-out mean squared error by more than this many units (one-sided as above)."""
     unexplained: float = 0.2
-    """What remains is significant when its mean square exceeds σ² by more than this many σ²."""
+    """What remains is significant when its weighted mean square exceeds σ² by more than this many
+    units."""
 
     def __post_init__(self) -> None:
-        for name, low in (("folds", 2), ("chunks", 2)):
+        for name, low in (("chunks", 2),):
             value: Any = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
                 integer = isinstance(value, numbers.Integral) and not isinstance(value, bool)

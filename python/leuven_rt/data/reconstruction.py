@@ -1,0 +1,197 @@
+"""The motion a friction model is driven by, made from a log: the reconstruction.
+
+A log gives a loop what its sensors give: an encoder position, and sometimes a measured velocity.
+A friction model needs a velocity (or a position whose differences are one) at every sample, and
+the position for a level or a force that depends on it. The reconstruction says how they are
+made (docs/data-and-reports.md#reconstruction), and the same one is used by the fit that chooses
+it and by :func:`leuven_rt.predict` (and a compensator fed the same signal):
+
+- ``source="velocity"``: the model is driven by the log's ``v`` (through a zero-phase low-pass at
+  ``cutoff`` Hz when one is given), the level and the position force by the log's ``x``;
+- ``source="position"``: the model is driven by the log's ``x`` (raw, or through a zero-phase
+  low-pass at ``cutoff`` Hz), each step's velocity being the difference of two samples over dt.
+
+The acceleration (for a measured inertia) is the central difference of the velocity through a
+zero-phase low-pass at the lower of ``cutoff`` and a tenth of the Nyquist frequency: a raw
+encoder's second difference is noise.
+
+It also finds where a log cannot tell the direction of motion: without a velocity column, the
+motion reverses somewhere between the last encoder count in the old direction and the first in
+the new one (:func:`ambiguous_samples`). No model driven by the encoder can place a friction
+flip inside that interval, so the fit weighs those samples down.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .._typing import FloatArray
+from ..errors import DataError
+from ..modelfile import Reconstruction
+from .records import MotionData
+from .signals import check_cutoff, lowpass
+
+#: A position whose counts reverse this many times as often as its low-passed version is noisy.
+SPURIOUS = 4
+#: ... and whose noise exceeds this many counts.
+NOISE_COUNTS = 2.0
+#: The acceleration's cutoff is at most this share of the Nyquist frequency.
+ACCELERATION_CUTOFF = 0.1
+
+
+def describe(reconstruction: Reconstruction) -> str:
+    """The reconstruction in words, for reports."""
+    if reconstruction.source == "velocity":
+        how = (
+            "as logged"
+            if reconstruction.cutoff is None
+            else f"through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+        )
+        return f"the logged velocity, {how}"
+    if reconstruction.cutoff is None:
+        return "the encoder position, raw (differences of consecutive samples)"
+    return f"the encoder position through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """What a model is driven by along a log: ``drive`` (a velocity or a position, per ``input``),
+    the velocity ``v`` each step holds, the position ``x`` the level and position force see, and
+    the acceleration ``a`` of the measurement's inertia term."""
+
+    reconstruction: Reconstruction
+    input: Literal["velocity", "position"]
+    drive: FloatArray
+    v: FloatArray
+    x: FloatArray
+    a: FloatArray
+    dt: float
+
+
+def differences(x: FloatArray, dt: float) -> FloatArray:
+    """vₖ = (xₖ − xₖ₋₁)/dt, v₀ = 0: the velocity a position-driven model steps with."""
+    v = np.empty_like(x)
+    v[0] = 0.0
+    np.subtract(x[1:], x[:-1], out=v[1:])
+    v[1:] /= dt
+    return v
+
+
+def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
+    """The motion of ``data`` under ``reconstruction`` (module documentation)."""
+    dt = data.dt
+    cutoff = reconstruction.cutoff
+    if cutoff is not None:
+        cutoff = check_cutoff(cutoff, dt, data.t.size)
+    slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
+    if reconstruction.source == "velocity":
+        if data.v is None:
+            raise DataError(
+                "the model is driven by the logged velocity, but the log has no `v` column",
+                kind="missing_column",
+                field="v",
+            )
+        v = data.v if cutoff is None else lowpass(data.v, dt, cutoff)
+        a = np.gradient(lowpass(data.v, dt, slow), dt)
+        return Motion(reconstruction, "velocity", v, v, data.x, a, dt)
+    x = data.x if cutoff is None else lowpass(data.x, dt, cutoff)
+    a = np.gradient(np.gradient(lowpass(data.x, dt, slow), dt), dt)
+    return Motion(reconstruction, "position", x, differences(x, dt), x, a, dt)
+
+
+#: Changes below this share of the median change are the rounding of a position written as
+#: decimal text (0.4235632 − 0.4235625 is not 7e-7 in binary), not encoder steps.
+ROUNDING = 1e-3
+
+
+def resolution(x: FloatArray) -> float:
+    """The encoder step: the smallest change between samples that is not rounding (0 if the
+    position never changes)."""
+    steps = np.abs(np.diff(x))
+    steps = steps[steps > 0]
+    if not steps.size:
+        return 0.0
+    steps = steps[steps >= ROUNDING * float(np.median(steps))]
+    return float(steps.min())
+
+
+def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
+    """Samples where an encoder cannot tell the direction of motion: from the last count in the old
+    direction to the first count in the new one at every reversal, widened by ``margin`` samples
+    on each side (the smearing of a filter)."""
+    out = np.zeros(x.size, dtype=bool)
+    steps = np.diff(x)
+    counts = np.flatnonzero(steps) + 1  # the samples at which the position changed
+    if counts.size < 2:
+        return out
+    sign = np.sign(steps[counts - 1])
+    for j in np.flatnonzero(sign[1:] != sign[:-1]):
+        out[max(counts[j] - margin, 0) : min(counts[j + 1] + margin, x.size)] = True
+    return out
+
+
+def reversals(x: FloatArray) -> int:
+    """How many times the encoder's counts change direction."""
+    steps = np.diff(x)
+    sign = np.sign(steps[steps != 0])
+    return int(np.count_nonzero(sign[1:] != sign[:-1]))
+
+
+def noisy_position(x: FloatArray, dt: float) -> bool:
+    """Whether the position's own noise reverses it: its counts change direction more than
+    :data:`SPURIOUS` times as often as the position through a low-pass at a twentieth of the
+    Nyquist frequency does, and its sample-to-sample noise (the robust spread of its second
+    differences over √6) is more than :data:`NOISE_COUNTS` counts. An encoder's counts jitter by
+    a count, and reverse where the motion does (a servo hunting about its set point reverses for
+    real); a position read with noise (a joint's position estimate, an analogue sensor) jumps by
+    many counts and reverses at every other sample of slow motion: its raw differences are not
+    the motion."""
+    cutoff = 0.05 * 0.5 / dt
+    step = resolution(x)
+    if x.size < 8 or not cutoff * x.size * dt >= 8.0 or not step > 0:
+        return False
+    second = np.diff(x, 2)
+    spread = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / math.sqrt(6.0)
+    if not spread > NOISE_COUNTS * step:
+        return False
+    return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)
+
+
+def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
+    """|x − x at the last change of the direction of motion| at every sample."""
+    direction = np.sign(v)
+    moving = np.flatnonzero(direction)
+    turns = np.zeros(x.size, dtype=bool)
+    if moving.size > 1:
+        flips = moving[1:][direction[moving[1:]] != direction[moving[:-1]]]
+        turns[flips] = True
+    turns[0] = True
+    start = np.maximum.accumulate(np.where(turns, np.arange(x.size), 0))
+    out: FloatArray = np.abs(x - x[start])
+    return out
+
+
+def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
+    """How many samples a reconstruction's filter smears a reversal over (2 for raw differences)."""
+    if reconstruction.cutoff is None:
+        return 2
+    return max(2, math.ceil(0.5 / (reconstruction.cutoff * dt)))
+
+
+__all__ = [
+    "Motion",
+    "ambiguous_samples",
+    "describe",
+    "differences",
+    "filter_margin",
+    "noisy_position",
+    "reconstruct",
+    "resolution",
+    "reversals",
+    "travel_since_reversal",
+]

@@ -1,0 +1,73 @@
+"""The model file a fit writes: the values of a fitted structure as a :class:`~leuven_rt.ModelFile`.
+
+The structure's parameters are already the file's numbers (:mod:`.structure`); this turns them
+into the file's objects: the friction model (:class:`~leuven_rt.Params`; elements whose weight is
+negligible left out), the position-dependent level or the position force with the positions'
+middle and half stroke, the measurement terms, the units and the reconstruction. A drift fitted
+alongside while selecting is never written.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ..level import PositionForce, PositionLevel, Ripple
+from ..modelfile import ModelFile, Reconstruction
+from ..params import Params
+from ..units import Units
+from .structure import Scales, Values
+
+#: An element whose weight is below this share of the largest is left out of the file.
+NEGLIGIBLE = 1e-9
+
+
+def friction_params(values: Values) -> Params:
+    """The friction model of ``values``, without elements of negligible weight."""
+    weights = np.asarray(values.W, dtype=float)
+    keep = weights > NEGLIGIBLE * float(weights.max())
+    friction: dict[str, Any] = {key: value for key, value in values.friction.items() if value is not None}
+    return Params(
+        **friction,
+        W=tuple(float(w) for w in weights[keep]),
+        Delta=tuple(float(d) for d in np.asarray(values.Delta)[keep]),
+    )
+
+
+def _terms(terms: Any, scales: Scales) -> dict[str, Any] | None:
+    if terms is None:
+        return None
+    trend, ripples = terms
+    return {
+        "middle": scales.middle,
+        "half_stroke": scales.half_stroke,
+        "trend": (float(trend[0]), float(trend[1])),
+        "ripples": tuple(Ripple(float(period), tuple(cos), tuple(sin)) for period, cos, sin in ripples),
+    }
+
+
+def model_file(
+    values: Values,
+    scales: Scales,
+    units: Units,
+    reconstruction: Reconstruction,
+    report: Mapping[str, Any] | None = None,
+) -> ModelFile:
+    """The model file of a fit's ``values`` (module documentation)."""
+    level = _terms(values.level, scales)
+    force = _terms(values.force, scales)
+    return ModelFile(
+        friction=friction_params(values),
+        level=None if level is None else PositionLevel(**level),
+        position_force=None if force is None else PositionForce(**force),
+        offset=float(values.offset),
+        inertia=float(values.inertia),
+        units=units,
+        reconstruction=reconstruction,
+        report=report,
+    )
+
+
+__all__ = ["NEGLIGIBLE", "friction_params", "model_file"]

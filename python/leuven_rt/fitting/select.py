@@ -1,0 +1,490 @@
+"""The rounds: which effects of the catalogue a log supports, each chosen on the simulation error
+of the model file that holds it.
+
+1. The motion is reconstructed as the log allows (:func:`choose_reconstruction`), the samples
+   where an encoder cannot place a reversal are weighed out, and the baseline is fitted.
+2. The noise σ and the floor (:mod:`.floor`) set the unit of evidence,
+   unit = max(σ², floor²) over the weighted samples.
+3. Each round fits every effect not yet in the model, each candidate starting at the model it
+   extends (so a candidate can only gain), and adds the one whose gain in weighted mean squared
+   error exceeds ``significance``·unit and is one-sided in time (the runs of samples where it
+   does worse lose less than ``loss`` times what the others gain); among those within
+   ``significance``·unit of the best, the one with the fewest parameters. When none counts
+   alone and the model is still more than ``joint``·unit above σ², pairs are tried.
+4. A level drifting over the record (outside the catalogue) is fitted alongside when it gains
+   ``drift``·unit, and the rounds are run again with it; it is reported, never written.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._typing import FloatArray
+from ..data.reconstruction import (
+    ambiguous_samples,
+    filter_margin,
+    noisy_position,
+    reconstruct,
+    resolution,
+)
+from ..data.records import MotionData
+from ..data.signals import residual_noise
+from ..errors import DataError
+from ..modelfile import Reconstruction
+from .evaluate import params_of
+from .floor import Floor, floor_estimate, with_reversals
+from .periods import find_period
+from .settings import Settings
+from .solve import Fitted, Target, fit
+from .structure import CATALOGUE, Scales, Structure
+
+#: Iterations of a candidate while it is screened; the chosen one is fitted to convergence.
+SCREEN = 12
+#: Effects tried in pairs when none counts alone: the best this many single additions.
+PAIRED = 4
+#: Elements of the presliding bank after the stiff one.
+ELEMENTS = 20
+#: The samples at each end of the record that a zero-phase filter disturbs.
+EDGE = 20
+#: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
+#: frequency.
+FILTERS = (0.2, 0.05)
+#: Errors are counted robustly at this many times the noise (the forward rounds' noise, at or
+#: below the noise): Cauchy's loss, which is the squared error up to about that scale.
+ROBUST = 5.0
+#: A sample the final model misses by more than this many times the noise is a gross error (the
+#: report counts them).
+OUTLIER = 5.0
+#: Most rows a fit's residual and Jacobian hold: a longer record is fitted on every k-th weighted
+#: sample (the simulation runs on every sample). The sampling error of a mean squared error over
+#: N rows of noise is σ²·√(2/N), 0.008·σ² at this N, far below the thresholds (0.2–1 unit).
+FIT_ROWS = 2**15
+#: A log needs this many samples that move (between encoder counts or by its velocity) to fit.
+MIN_MOVING = 100
+
+
+@dataclass(frozen=True, eq=False)
+class Step:
+    """One effect added: the fit before and after it."""
+
+    effect: str
+    before: Fitted
+    after: Fitted
+
+
+@dataclass(frozen=True, eq=False)
+class Selection:
+    """What the rounds found."""
+
+    reconstruction: Reconstruction
+    target: Target
+    scales: Scales
+    noise: float
+    floor: Floor
+    baseline: Fitted
+    steps: list[Step]
+    final: Fitted
+    drift: bool
+    """A drift of the level was significant and fitted alongside while selecting."""
+    without_drift: Fitted
+    """The final structure without the drift: the model that is written."""
+    unit: float
+    tried: list[tuple[str, float]]
+    """Every candidate of the last round with its gain, in units."""
+    file_reconstruction: Reconstruction
+    """How the written file reconstructs the motion: the one under which it predicts the log best."""
+    file_target: Target
+    file_scales: Scales
+    written: Fitted
+    """``without_drift`` refitted under ``file_reconstruction``: the model that is written."""
+    gross: int
+    """Samples left out as gross errors (module documentation); 0 when too few to matter."""
+
+
+Progress = Callable[[str], None]
+
+
+def select(
+    record: MotionData,
+    baseline: Sequence[str],
+    settings: Settings,
+    progress: Progress | None = None,
+) -> Selection:
+    """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
+    say = progress or (lambda _: None)
+    structure = Structure(frozenset(baseline))
+    reconstruction = rounds_reconstruction(record)
+    target, scales = prepare(record, reconstruction)
+    run = _select_on(structure, target, scales, settings, say)
+    target = run.target
+    residual = target.force - run.final.force
+    gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
+    final, without, floor = run.final, run.without, run.floor
+    if reconstruction.source == "position":
+        floor = with_reversals(floor, full_mse(final, target), final.mse)
+    say("choosing how the written file reconstructs the motion")
+    file = choose_reconstruction(record, without)
+    written = fit(without.structure, file[2], file[1], file[3].theta)
+    return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
+                     without, run.unit, run.tried, file[0], file[1], file[2], written,
+                     int(np.count_nonzero(gross)))  # fmt: skip
+
+
+@dataclass(frozen=True, eq=False)
+class _Run:
+    base: Fitted
+    steps: list[Step]
+    final: Fitted
+    without: Fitted
+    drift: bool
+    noise: float
+    floor: Floor
+    unit: float
+    tried: list[tuple[str, float]]
+    target: Target
+
+
+def _select_on(
+    structure: Structure, target: Target, scales: Scales, settings: Settings, say: Progress
+) -> _Run:
+    """The rounds on ``target`` (module documentation)."""
+    base = fit(structure, scales, target, _coulomb_viscous(target, structure))
+    motion = target.motion
+    params = params_of(base.evaluation.values)
+    floor = floor_estimate(params, target.recorded_x, motion.dt, motion.reconstruction, target.weight)
+    # Forward, then backward. The noise is read from what a model leaves: the baseline's residual
+    # still holds the missing effects, which its differences at a few samples would count as
+    # noise, so the rounds add effects against the noise its one-sample differences read (at or
+    # below the noise, white or coloured); then the final model's residual reads the noise, and
+    # every effect whose removal loses less than the threshold in that unit is taken out again.
+    permissive = _unit(_sample_noise(base, target), floor, scales)
+    # Errors are counted robustly from here on: a sample the model misses by far more than the
+    # noise (a drive that lets go at a stop, a spike) weighs little more than one missed by it,
+    # so that no effect is named to explain it.
+    target = dataclasses.replace(target, scale=ROBUST * math.sqrt(permissive))
+    base = fit(structure, scales, target, base.theta)
+    say("selecting effects")
+    steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
+    noise, floor, unit = _evidence(final, target, floor, scales)
+    final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    drift = _significant(final, drifting, target, settings.drift * unit, settings)
+    without = final
+    if drift:
+        say("a drift of the level: selecting again with it fitted alongside")
+        base = fit(structure.with_drift(), scales, target, base.theta)
+        steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
+        noise, floor, unit = _evidence(final, target, floor, scales)
+        final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
+        without = fit(final.structure.with_drift(False), scales, target, final.theta)
+    return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
+
+
+def _noise(fitted: Fitted, target: Target) -> float:
+    return residual_noise(target.force - fitted.force, target.weight > 0)
+
+
+def _sample_noise(fitted: Fitted, target: Target) -> float:
+    """The noise read from one-sample differences of what ``fitted`` leaves: at or below the
+    noise, white or coloured, and little touched by slow model errors."""
+    residual = target.force - fitted.force
+    weighted = target.weight > 0
+    rows = weighted[1:] & weighted[:-1]
+    differences = (residual[1:] - residual[:-1])[rows]
+    if differences.size < 2:
+        return 0.0
+    return 1.4826 * float(np.median(np.abs(differences - np.median(differences)))) / math.sqrt(2.0)
+
+
+def _evidence(final: Fitted, target: Target, floor: Floor, scales: Scales) -> tuple[float, Floor, float]:
+    """The noise, the floor and the unit read from what the ``final`` model leaves: its
+    residual's noise, and the floor on the weighted samples bounded by its excess over that
+    noise (the floor itself when the model is right)."""
+    noise = _noise(final, target)
+    floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
+    return noise, floor, _unit(noise, floor, scales)
+
+
+def _prune(
+    base: Fitted,
+    final: Fitted,
+    steps: list[Step],
+    scales: Scales,
+    target: Target,
+    settings: Settings,
+    unit: float,
+    say: Progress,
+) -> tuple[Fitted, list[Step]]:
+    """``final`` without every added effect that its removal costs less than the threshold, one
+    at a time, the least useful first; and the steps that add the remaining ones in their order."""
+    added = [step.effect for step in steps]
+    pruned = False
+    while added:
+        options = []
+        for effect in added:
+            structure = final.structure.without(effect)
+            theta = {name: value for name, value in final.theta.items() if name in structure.names()
+                     or name in structure.share_names(scales.deltas.size)}  # fmt: skip
+            options.append((effect, fit(structure, scales, target, theta, SCREEN)))
+        effect, reduced = min(options, key=lambda option: option[1].mse)
+        if _significant(reduced, final, target, settings.significance * unit, settings):
+            break
+        say(f"taken out again: {effect} (gains only {(reduced.mse - final.mse) / unit:.2f} units)")
+        final = fit(reduced.structure, scales, target, reduced.theta)
+        added.remove(effect)
+        pruned = True
+    if not pruned:
+        return final, steps
+    kept: list[Step] = []
+    current = base
+    for effect in added:
+        template = final.structure
+        grown = fit(_with(current.structure, effect, template), scales, target, current.theta)
+        kept.append(Step(effect, current, grown))
+        current = grown
+    if kept:
+        kept[-1] = Step(kept[-1].effect, kept[-1].before, final)
+    return final, kept
+
+
+def _unit(noise: float, floor: Floor, scales: Scales) -> float:
+    return max(noise**2, floor.weighted**2, (1e-12 * scales.force) ** 2)
+
+
+def _rounds(
+    current: Fitted, scales: Scales, target: Target, settings: Settings, unit: float, say: Progress
+) -> tuple[list[Step], Fitted, list[tuple[str, float]]]:
+    steps: list[Step] = []
+    tried: list[tuple[str, float]] = []
+    while True:
+        left = [name for name in CATALOGUE if not current.structure.has(name)]
+        if not left:
+            break
+        say(f"round {len(steps) + 1}: trying {', '.join(left)}")
+        found = [_candidate(current, name, scales, target) for name in left]
+        candidates = [c for c in found if c is not None]
+        tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
+        best = _choose(current, candidates, target, settings, unit)
+        if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
+            ranked = sorted((c for c in candidates if c.mse < current.mse), key=lambda c: c.mse)[:PAIRED]
+            pairs = []
+            for first, second in itertools.combinations(ranked, 2):
+                pair = _extend(first, _added(current, second), scales, target, SCREEN)
+                if pair is not None:
+                    pairs.append(pair)
+            best = _choose(current, pairs, target, settings, unit)
+        if best is None:
+            break
+        chosen = fit(best.structure, scales, target, best.theta)
+        added = sorted(chosen.structure.effects - current.structure.effects, key=CATALOGUE.index)
+        if len(added) == 2:  # a pair: each effect its own step, the first fitted alone
+            middle = fit(_with(current.structure, added[0], best.structure), scales, target, current.theta)
+            steps.append(Step(added[0], current, middle))
+            steps.append(Step(added[1], middle, chosen))
+        else:
+            steps.append(Step(added[0], current, chosen))
+        say(
+            f"added {', '.join(added)}: weighted rms {math.sqrt(current.mse):.4g} -> "
+            f"{math.sqrt(chosen.mse):.4g}"
+        )
+        current = chosen
+    return steps, current, tried
+
+
+def _added(current: Fitted, candidate: Fitted) -> str:
+    return next(iter(sorted(candidate.structure.effects - current.structure.effects, key=CATALOGUE.index)))
+
+
+def _with(structure: Structure, effect: str, template: Structure) -> Structure:
+    if effect == "position_dependence":
+        return structure.with_effect(effect, form=template.form, periods=template.periods)
+    return structure.with_effect(effect)
+
+
+def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> Fitted | None:
+    return _extend(current, effect, scales, target, SCREEN)
+
+
+def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterations: int) -> Fitted | None:
+    """``current`` with ``effect`` added, fitted from where ``current`` stands; for
+    ``position_dependence``, the better of its two forms."""
+    if effect != "position_dependence":
+        return fit(current.structure.with_effect(effect), scales, target, current.theta, iterations)
+    residual = target.force - current.force
+    rows = target.rows & (target.motion.v != 0)
+    options = []
+    for form, signal in (("level", residual * np.sign(target.motion.v)), ("force", residual)):
+        period = find_period(target.motion.x, signal, rows)
+        structure = current.structure.with_effect(
+            effect, form=form, periods=() if period is None else (period,)
+        )
+        options.append(fit(structure, scales, target, current.theta, iterations))
+    return min(options, key=lambda fitted: fitted.mse)
+
+
+def _significant(
+    current: Fitted, candidate: Fitted, target: Target, threshold: float, settings: Settings
+) -> bool:
+    """The candidate gains more than ``threshold`` in weighted mean squared error, and its gain
+    is one-sided over ``settings.chunks`` runs of samples in time."""
+    if not current.mse - candidate.mse > threshold:
+        return False
+    gain = target.losses(current.force) - target.losses(candidate.force)
+    runs = np.array([part.sum() for part in np.array_split(gain, settings.chunks)])
+    won, lost = runs[runs > 0].sum(), -runs[runs < 0].sum()
+    return bool(lost < settings.loss * won)
+
+
+def _choose(
+    current: Fitted, candidates: list[Fitted], target: Target, settings: Settings, unit: float
+) -> Fitted | None:
+    good = [c for c in candidates if _significant(current, c, target, settings.significance * unit, settings)]
+    if not good:
+        return None
+    lowest = min(c.mse for c in good)
+    close = [c for c in good if c.mse <= lowest + settings.significance * unit]
+    return min(close, key=lambda c: (len(c.theta), c.mse))
+
+
+def rounds_reconstruction(record: MotionData) -> Reconstruction:
+    """The reconstruction the rounds name effects under: the logged velocity where there is one,
+    else the raw encoder position, whose ambiguous reversals are known to the sample; a position
+    whose noise reverses it (:func:`~leuven_rt.data.reconstruction.noisy_position`) through the
+    lighter of the low-passes."""
+    if record.v is not None:
+        return Reconstruction("velocity")
+    if noisy_position(record.x, record.dt):
+        return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
+    return Reconstruction("position")
+
+
+def _every_sample(samples: int) -> FloatArray:
+    """Weight 1 on every sample but the filters' edges."""
+    edge = min(EDGE, samples // 10)
+    weight = np.ones(samples)
+    weight[:edge], weight[samples - edge :] = 0.0, 0.0
+    return weight
+
+
+def reconstruction_options(record: MotionData) -> list[Reconstruction]:
+    """The reconstructions the written file may use (docs/data-and-reports.md#reconstruction):
+    that of the rounds, and the encoder position through zero-phase low-passes."""
+    nyquist = 0.5 / record.dt
+    options = [rounds_reconstruction(record)]
+    if record.v is not None:
+        options.append(Reconstruction("position"))
+    options += [Reconstruction("position", share * nyquist) for share in FILTERS]
+    return list(dict.fromkeys(options))
+
+
+def full_mse(fitted: Fitted, target: Target) -> float:
+    """The mean squared simulation error over every sample but the filter's edges: what
+    :func:`leuven_rt.predict` reports, whatever the weights."""
+    edge = min(EDGE, target.force.size // 10)
+    error = (fitted.force - target.force)[edge : target.force.size - edge]
+    return float(np.mean(error**2))
+
+
+def choose_reconstruction(
+    record: MotionData, fitted: Fitted, iterations: int = SCREEN
+) -> tuple[Reconstruction, Target, Scales, Fitted]:
+    """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
+    every sample, with its target, scales and fit. The file is judged as ``predict`` judges it:
+    by the squared error over every sample but the filters' edges, so it is fitted that way too
+    (no robust loss, the reversals the rounds leave out included): the error at a reversal is
+    part of what a compensator driven by this signal gives."""
+    best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
+    for reconstruction in reconstruction_options(record):
+        try:
+            target, scales = prepare(record, reconstruction)
+        except DataError:
+            continue
+        target = dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None)
+        refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
+        error = full_mse(refitted, target)
+        if best is None or error < best[0]:
+            best = (error, reconstruction, target, scales, refitted)
+    assert best is not None
+    return best[1], best[2], best[3], best[4]
+
+
+def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target, Scales]:
+    """The target (force, weights, motion) and scales of ``record`` under ``reconstruction``."""
+    motion = reconstruct(record, reconstruction)
+    samples = record.t.size
+    weight = np.ones(samples)
+    edge = min(EDGE, samples // 10)
+    weight[:edge], weight[samples - edge :] = 0.0, 0.0
+    if reconstruction.source == "position":
+        # Where the counts reverse only by the position's noise, the reversals to leave out are
+        # those of the motion the model is driven by.
+        counted = (
+            motion.x
+            if reconstruction.cutoff is not None and noisy_position(record.x, record.dt)
+            else record.x
+        )
+        weight[ambiguous_samples(counted, filter_margin(reconstruction, record.dt))] = 0.0
+    moving = (weight > 0) & (motion.v != 0)
+    step = resolution(record.x)
+    stroke = float(np.ptp(record.x))
+    if np.count_nonzero(moving) < MIN_MOVING or not stroke > 10.0 * step:
+        raise DataError(
+            f"no sliding motion: {np.count_nonzero(moving)} samples move and the position spans {stroke:.3g} "
+            f"(encoder step {step:.3g}); a log to identify from needs the axis to slide back and forth, over "
+            f"at least {MIN_MOVING} moving samples and many encoder steps",
+            kind="no_sliding_motion",
+            field="x",
+            value=float(stroke),
+        )
+    speeds = np.abs(motion.v[moving])
+    high = float(np.percentile(speeds, 99))
+    # At least an octave, so that a log at one speed still bounds Vs to an interval.
+    low = min(max(float(np.percentile(speeds, 1)), 1e-3 * high), 0.5 * high)
+    force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
+    stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
+    lowest = max(3.0 * step, 1e-5 * stroke)
+    highest = max(min(0.02 * stroke, 0.5 * _excursion(record.x)), 30.0 * lowest)
+    grid = np.geomspace(lowest, highest, ELEMENTS)
+    # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
+    # of the widest Δ (docs/parameters.md#rules).
+    stiff = max(stiff, highest * 2.0**-24)
+    middle = 0.5 * float(record.x.max() + record.x.min())
+    scales = Scales(speed_low=low, speed_high=high, force=force_scale, stiff=stiff, grid=grid, middle=middle,
+                    half_stroke=0.5 * stroke)  # fmt: skip
+    tau = np.linspace(-1.0, 1.0, samples)
+    stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
+    return Target(record.f, weight, motion, tau, record.x, stride), scales
+
+
+def _excursion(x: FloatArray) -> float:
+    """The median travel between reversals."""
+    steps = np.diff(x)
+    steps = steps[steps != 0]
+    if steps.size == 0:
+        return 0.0
+    turns = np.flatnonzero(np.sign(steps[1:]) != np.sign(steps[:-1]))
+    path = np.cumsum(steps)
+    points = np.concatenate(([0.0], path[turns], [path[-1]]))
+    return float(np.median(np.abs(np.diff(points))))
+
+
+def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:
+    """Where the baseline starts: a Coulomb–viscous–offset least-squares fit."""
+    rows = target.rows
+    v = target.motion.v[rows]
+    design = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    coefficients = np.linalg.lstsq(design, target.force[rows], rcond=None)[0]
+    scale = float(np.std(target.force[rows])) or 1.0
+    out = {"Fc": max(float(coefficients[0]), 1e-3 * scale), "sigma2": max(float(coefficients[1]), 0.0)}
+    if structure.has("offset"):
+        out["offset"] = float(coefficients[2])
+    return out
+
+
+__all__ = ["Selection", "Step", "choose_reconstruction", "prepare", "select"]

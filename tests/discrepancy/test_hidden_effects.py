@@ -1,0 +1,100 @@
+"""The workflow on generated logs with hidden effects (leuven_rt.discrepancy.hidden): every
+catalogue effect alone, pairs, a null case and an effect outside the catalogue (a drift), with and
+without a logged velocity. What is named, and the error of the written file where the log allows
+the noise (a logged velocity: the floor is the noise itself)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import leuven_rt as lr
+from leuven_rt.discrepancy import CATALOGUE
+from leuven_rt.discrepancy.hidden import make_hidden
+
+BASE = ("coulomb", "viscous")
+DT = 8e-4
+SINGLE = [(*BASE, effect) for effect in CATALOGUE if effect not in BASE]
+PAIRS = [
+    (*BASE, "inertia", "offset"),
+    (*BASE, "presliding_hysteresis", "position_dependence"),
+    (*BASE, "stribeck", "asymmetry"),
+]
+
+
+@pytest.mark.parametrize("with_velocity", [False, True], ids=["x", "x,v"])
+@pytest.mark.parametrize("truth", SINGLE + PAIRS, ids="+".join)
+def test_hidden_effects_are_named_exactly(truth: tuple[str, ...], with_velocity: bool) -> None:
+    hidden = make_hidden(truth, dt=DT, with_velocity=with_velocity, seed=len(truth))
+    identification = lr.identify(hidden.data, BASE)
+    diagnosis = identification.diagnosis
+    assert sorted(diagnosis.named_effects) == sorted(set(truth) - set(BASE)), diagnosis.story()
+    assert diagnosis.rms_after < diagnosis.rms_before
+    if with_velocity:
+        # The log gives the model what it needs: the written file ends at the noise.
+        assert lr.predict(identification.model, hidden.data).rms <= 1.2 * hidden.noise_std, diagnosis.story()
+
+
+def test_presliding_is_the_modified_leuven_bank() -> None:
+    hidden = make_hidden((*BASE, "presliding_hysteresis"), dt=DT, with_velocity=True)
+    identification = lr.identify(hidden.data, BASE)
+    (step,) = identification.diagnosis.steps
+    assert step.effect == "presliding_hysteresis"
+    params = identification.params
+    assert params.W is not None and all(w >= 0.0 for w in params.W)
+    # What the log determines is the force along a presliding loop, not each element: the virgin
+    # curve from rest and the curve back after 20 µm, as the generator's bank gives them (six
+    # elements up to 10 µm holding 1.02·Fc, n = 2).
+    index = np.arange(1, 7)
+    truth = lr.Params(Fc=1.0, Fs=1.0, Vs=1e-3, delta=2.0, n=2.0, sigma2=10.0,
+                      W=tuple((7 - index) / 21 * 1.02),
+                      Delta=tuple(1e-5 * index / 6))  # fmt: skip
+    dt = 1e-3
+    x = np.concatenate([np.linspace(0.0, 2e-5, 400), np.linspace(2e-5, -2e-5, 800)])
+    np.testing.assert_allclose(
+        lr.simulate_position(params, x, dt), lr.simulate_position(truth, x, dt), rtol=0.0, atol=0.05
+    )
+
+
+def test_the_null_case_names_nothing_and_leaves_nothing_unexplained() -> None:
+    diagnosis = lr.diagnose(make_hidden(BASE, dt=DT, seed=3).data, BASE)
+    assert diagnosis.named_effects == [], diagnosis.story()
+    assert diagnosis.rms_after == diagnosis.rms_before
+    assert not diagnosis.unexplained_significant, diagnosis.story()
+
+
+def test_a_drift_names_nothing_stays_unexplained_and_is_not_written() -> None:
+    identification = lr.identify(make_hidden(BASE, drift=True).data, BASE)
+    diagnosis = identification.diagnosis
+    assert diagnosis.named_effects == [], diagnosis.story()
+    assert diagnosis.drift and diagnosis.unexplained_significant, diagnosis.story()
+    assert "drift" in diagnosis.unexplained_where
+    assert any("drift" in warning for warning in identification.warnings)
+    assert "drift" not in json.dumps(identification.model.to_dict()["friction"])
+
+
+def test_the_report_follows_the_documented_layout() -> None:
+    hidden = make_hidden((*BASE, "inertia"), dt=DT, with_velocity=True)
+    identification = lr.identify(hidden.data, "coulomb,viscous")
+    diagnosis = identification.diagnosis
+    report = json.loads(diagnosis.to_json())
+    assert list(report) == [
+        "samples", "noise_std", "floor_estimate", "reconstruction", "gross_errors", "baseline", "rms_before",
+        "rms_after", "named_effects", "steps", "unexplained", "settings", "final_model",
+    ]  # fmt: skip
+    assert report["samples"] == diagnosis.samples and report["baseline"] == list(BASE)
+    assert report["named_effects"] == ["inertia"]
+    (step,) = report["steps"]
+    assert set(step) == {"effect", "where", "rms_before", "rms_after", "params"}
+    assert step["rms_after"] < step["rms_before"]
+    assert step["params"]["inertia"] == pytest.approx(0.05, rel=0.1)  # the generator's mass
+    assert set(report["unexplained"]) == {"significant", "where", "drift"}
+    assert report["settings"] == lr.discrepancy.Settings().to_dict()
+    # The final model is the file, as written.
+    assert report["final_model"] == {
+        key: value for key, value in identification.model.to_dict().items() if key != "report"
+    }
+    assert np.isfinite(report["noise_std"]) and report["noise_std"] > 0
+    assert report["floor_estimate"] >= 0.0

@@ -1,0 +1,108 @@
+"""What counts as evidence: the noise read from a residual, the structure left in it, the samples
+an encoder cannot place, and the encoder's step."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import signal
+
+from leuven_rt.data.reconstruction import ambiguous_samples, noisy_position, resolution, travel_since_reversal
+from leuven_rt.data.signals import residual_noise
+from leuven_rt.fitting.remains import functions, remains
+
+
+def coloured(samples: int, cutoff: float, dt: float, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    b, a = signal.butter(1, cutoff, fs=1.0 / dt)
+    low = signal.lfilter(b, a, rng.standard_normal(samples))
+    noise = 0.95 * low / low.std() + 0.3 * rng.standard_normal(samples)
+    return noise / noise.std()
+
+
+@pytest.mark.parametrize(("cutoff", "dt"), [(20.0, 1e-3), (50.0, 1e-3), (30.0, 2e-3), (100.0, 2e-4)])
+def test_the_noise_of_a_residual_is_read_within_a_tenth_white_or_coloured(cutoff: float, dt: float) -> None:
+    for seed in range(3):
+        noise = coloured(30_000, cutoff, dt, seed)
+        assert residual_noise(noise) == pytest.approx(1.0, abs=0.1)
+    assert residual_noise(np.random.default_rng(9).standard_normal(30_000)) == pytest.approx(1.0, abs=0.05)
+
+
+def test_only_differences_inside_the_rows_count() -> None:
+    noise = coloured(20_000, 30.0, 1e-3, 0)
+    spiky = noise.copy()
+    rows = np.ones(noise.size, dtype=bool)
+    spiky[::50] += 40.0  # a flip the encoder misplaced, every 50 samples
+    rows[::50] = False
+    assert residual_noise(spiky, rows) == pytest.approx(residual_noise(noise), rel=0.05)
+
+
+def motion(samples: int = 24_000, dt: float = 1e-3) -> tuple[np.ndarray, ...]:
+    t = np.arange(samples) * dt
+    x = 0.05 * np.sin(2 * np.pi * 0.4 * t) + 0.01 * np.sin(2 * np.pi * 1.3 * t)
+    v = np.gradient(x, dt)
+    a = np.gradient(v, dt)
+    return x, v, a
+
+
+def travel(x: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return travel_since_reversal(x, v)
+
+
+def test_coloured_noise_leaves_no_structure_that_a_predictor_finds() -> None:
+    x, v, a = motion()
+    rows = np.ones(x.size, dtype=bool)
+    table = functions(v, x, a, travel(x, v), rows)
+    for seed in range(4):
+        left = remains(coloured(x.size, 30.0, 1e-3, seed), np.ones(x.size), table)
+        assert left.gain < 0.05, seed
+
+
+@pytest.mark.parametrize(
+    ("missing", "where"),
+    [
+        (lambda x, v, a: 0.5 * np.sign(v) * np.exp(-np.abs(v) / 0.01), "speed in each direction"),
+        (lambda x, v, a: 0.5 * x / 0.05, "position"),
+        (lambda x, v, a: 1.0 * a, "acceleration"),
+    ],
+)
+def test_a_missing_effect_leaves_structure_and_the_predictor_says_where(missing, where: str) -> None:  # type: ignore[no-untyped-def]
+    x, v, a = motion()
+    rows = np.ones(x.size, dtype=bool)
+    residual = missing(x, v, a) + 0.1 * coloured(x.size, 30.0, 1e-3, 0)
+    left = remains(residual, np.ones(x.size), functions(v, x, a, travel(x, v), rows))
+    assert left.gain > 0.5 * float(np.mean(missing(x, v, a) ** 2))
+    strongest = left.strongest()
+    assert strongest is not None and where in strongest
+
+
+def test_the_encoder_step_ignores_the_rounding_of_binary_fractions() -> None:
+    rng = np.random.default_rng(0)
+    counts = np.cumsum(rng.integers(-2, 3, 5000))
+    step = 2 * np.pi / 2**23
+    # Written as text and read back: differences of the counts are the step up to rounding.
+    x = np.array([float(repr(float(value))) for value in 0.4235631 + step * counts])
+    assert resolution(x) == pytest.approx(step, rel=1e-6)
+    assert resolution(np.zeros(10)) == 0.0
+
+
+def test_the_ambiguous_samples_span_each_reversal_from_the_last_count_to_the_first() -> None:
+    #                0  1  2  3  4  5  6  7  8  9
+    x = np.array([0, 1, 2, 2, 2, 2, 1, 0, 0, 1], dtype=float)
+    out = ambiguous_samples(x, margin=0)
+    # The count at sample 2 is the last in +x, the one at 6 the first in −x; 7 → 9 reverses again.
+    assert out.tolist() == [False, False, True, True, True, True, False, True, True, False]
+
+
+def test_a_position_whose_noise_reverses_it_is_told_from_an_encoder() -> None:
+    dt = 1e-3
+    t = np.arange(20_000) * dt
+    x = 1e-3 * np.sin(2 * np.pi * 0.5 * t)
+    # An encoder (1 µm counts, 0.1 µm of jitter before the count) reverses where the motion does,
+    # give or take a count at each turn.
+    rng = np.random.default_rng(1)
+    encoder = np.round((x + rng.normal(0.0, 1e-7, t.size)) / 1e-6) * 1e-6
+    assert not noisy_position(encoder, dt)
+    # A position estimate with noise of ten counts reverses at every other sample of slow motion.
+    estimate = np.round((x + rng.normal(0.0, 1e-5, t.size)) / 1e-6) * 1e-6
+    assert noisy_position(estimate, dt)
