@@ -20,7 +20,9 @@ Per sample k, with (x, v, a, z, ζ) at the start of the step and u held over it:
 In both, the velocity the friction holds over the step is (x⁺ − x)/dt, the friction step's own
 contract. :func:`implicit_mass_step` takes the hysteresis and the state equation as functions, so
 that the original Leuven model (:mod:`leuven_rt.reference.original_leuven`) rides on the same mass.
-"""
+
+
+The module's name mirrors the public :mod:`leuven_rt.mechanics` on purpose: it is that module's oracle."""
 
 from __future__ import annotations
 

@@ -1,5 +1,7 @@
 """The regressors of :class:`leuven_rt.OnlineIdentifier` in plain numpy, written as the
-specification: the Rust estimator must build the same ones (the tests compare the two)."""
+specification: the Rust estimator must build the same ones (the tests compare the two).
+
+The module's name mirrors the public :mod:`leuven_rt.online` on purpose: it is that module's oracle."""
 
 from __future__ import annotations
 
