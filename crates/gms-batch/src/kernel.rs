@@ -80,6 +80,11 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         return Err(Rejected);
     }
     let (curve, sigma1) = (Curve::new(params.stribeck()), params.sigma1());
+    // gms-core's closed form of LuGre's implicit step (a linear spring with n = 1).
+    let linear = match scheme {
+        Scheme::Implicit if exponent.n() == 1.0 => params.hysteresis().linear_stiffness(),
+        _ => None,
+    };
     let position = matches!(signal, Signal::Position { .. });
     let mut memory = kernel.gather::<L>(states);
     let mut z: [f64; L] = lanes(|l| states[l].z);
@@ -142,7 +147,9 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         }
         for t in 0..len {
             g[t] = match scheme {
-                // The implicit step uses 1/g(v).
+                // The closed form uses g(v) itself, through its factor g/(g + dt·|v|·k).
+                Scheme::Implicit if linear.is_some() => curve.g(&v[t]),
+                // The implicit step's walk uses 1/g(v).
                 Scheme::Implicit => {
                     let g = curve.g(&v[t]);
                     lanes(|l| 1.0 / g[l])
@@ -152,8 +159,14 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         }
         for t in 0..len {
             let v = &v[t];
-            let z_next = match scheme {
-                Scheme::Implicit => {
+            let z_next = match (scheme, linear) {
+                (Scheme::Implicit, Some(stiffness)) => {
+                    let g = &g[t];
+                    lanes(|l| {
+                        (z[l] + dt * v[l]) * (g[l] / (g[l] + dt * libm::fabs(v[l]) * stiffness))
+                    })
+                }
+                (Scheme::Implicit, None) => {
                     let step = Step {
                         z,
                         dt_v: lanes(|l| dt * v[l]),
@@ -164,7 +177,7 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
                     solve::<H::Kernel, E, L>(kernel, &memory, &step, first, exponent)
                         .ok_or(Rejected)?
                 }
-                Scheme::Explicit => {
+                (Scheme::Explicit, _) => {
                     let force = &force_at_z;
                     let g = &g[t];
                     lanes(|l| {
