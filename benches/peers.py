@@ -29,6 +29,22 @@ between two different computations would mean nothing.
 Prints two markdown tables: ns per channel-step for each, and the ratio numba / leuven-rt (above
 1: the library is faster). The one-channel times include the whole call (input checks, output
 array), as a fit pays them.
+
+Measured with ``python benches/peers.py`` on the project's machine (2 cores, AMD EPYC, a shared
+VM; load average 2.1 during the run), one-channel rows:
+
+| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt |
+|---|---:|---:|---:|
+| LuGre, implicit, velocity | 6.57 | 6.44 | 0.98x |
+| LuGre, implicit, position | 7.97 | 7.92 | 0.99x |
+| Leuven N = 10, n = 2, implicit, position, level | 63.31 | 56.33 | 0.89x |
+
+LuGre is level with numba, not ahead of it (the closed form of its implicit step and the
+factors computed ahead are in docs/realtime.md and the changelog). What is left is mostly
+arithmetic the library does not share with numba: gms-core is ``no_std`` and takes ``exp`` and
+``sincos`` from libm (FreeBSD's algorithms, which gms-batch's lanes reproduce bit for bit), numba
+calls the C library's faster ones. The level alone costs the library about 12 ns a step
+(measured apart: the same Leuven call without it took 51 ns a step).
 """
 
 from __future__ import annotations

@@ -322,13 +322,19 @@ impl PieceEquation {
 }
 
 /// The root of R for Fh(y) = k·y and n = 1: R(y) = (y − z) − dt·v + dt·|v|·k·y/g is linear in
-/// y, so y = (z + dt·v)/(1 + dt·|v|·k/g), written as (z + dt·v)·(g/(g + dt·|v|·k)): one
-/// division, and none that depends on z, so that a run of steps is a chain of one addition and
-/// one multiplication. g/(g + c·k) is in (0, 1] and cancels nothing (g > 0, c·k ≥ 0); v = 0
-/// gives z exactly.
+/// y, so y = (z + dt·v)/(1 + dt·|v|·k/g), written as (z + dt·v)·(g/(g + dt·|v|·k)) with the
+/// factor from [`linear_factor`]: one division, and none that depends on z, so that a run of
+/// steps is a chain of one addition and one multiplication. v = 0 gives z exactly.
 #[inline]
-pub(crate) fn linear_root(z: f64, dt_v: f64, dt_abs_v: f64, stiffness: f64, g: f64) -> f64 {
-    (z + dt_v) * (g / (g + dt_abs_v * stiffness))
+pub(crate) fn linear_root(z: f64, dt_v: f64, factor: f64) -> f64 {
+    (z + dt_v) * factor
+}
+
+/// g/(g + dt·|v|·k), the factor of [`linear_root`]: in (0, 1], and it cancels nothing (g > 0,
+/// dt·|v|·k ≥ 0). It depends on the input alone.
+#[inline]
+pub(crate) fn linear_factor(dt_abs_v: f64, stiffness: f64, g: f64) -> f64 {
+    g / (g + dt_abs_v * stiffness)
 }
 
 /// Root of P(s) = s + q + c·φ(α + β·s) for n = 2 (φ(u) = u·|u|), β > 0, c ≥ 0, where
