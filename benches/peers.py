@@ -11,12 +11,40 @@ library (docs/model.md#discrete-step), with the same parameters and inputs:
 
 Both sides get a batch of B channels × T samples (B = 256, T = 10 000; ``--quick``: 35 × 2 000)
 with a different sine per channel (amplitude, frequency and phase), so that channels reverse at
-different samples. The library runs with one thread (``RAYON_NUM_THREADS=1``, set before it is
-imported), the numba loop is serial. Before timing, the peer's forces are compared with the
-library's: a ratio between two different computations would mean nothing.
+different samples.
 
-Prints a markdown table: ns per channel-step for each, and the ratio numba / leuven-rt (above 1:
-the library is faster).
+Then one long channel (T = 100 000; ``--quick``: 20 000), what a fit simulates many times, each
+through the call a user makes for it and a numba loop of one channel:
+
+- LuGre, implicit, velocity input (``leuven_rt.simulate`` on a 1-D signal);
+- LuGre, implicit, position input (``leuven_rt.simulate_position``: v = (xₖ − xₖ₋₁)/dt, 0 on the
+  first sample);
+- the modified Leuven model, N = 10, implicit, position input with a position-dependent level
+  (:class:`leuven_rt.PositionLevel`: a trend along the stroke and a ripple of the screw's pitch).
+
+The library runs with one thread (``RAYON_NUM_THREADS=1``, set before it is imported), the numba
+loop is serial. Before timing, the peer's forces are compared with the library's: a ratio
+between two different computations would mean nothing.
+
+Prints two markdown tables: ns per channel-step for each, and the ratio numba / leuven-rt (above
+1: the library is faster). The one-channel times include the whole call (input checks, output
+array), as a fit pays them.
+
+Measured with ``python benches/peers.py`` on the project's machine (2 cores, AMD EPYC, a shared
+VM; load average 2.1 during the run), one-channel rows:
+
+| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt |
+|---|---:|---:|---:|
+| LuGre, implicit, velocity | 6.57 | 6.44 | 0.98x |
+| LuGre, implicit, position | 7.97 | 7.92 | 0.99x |
+| Leuven N = 10, n = 2, implicit, position, level | 63.31 | 56.33 | 0.89x |
+
+LuGre is level with numba, not ahead of it (the closed form of its implicit step and the
+factors computed ahead are in docs/realtime.md and the changelog). What is left is mostly
+arithmetic the library does not share with numba: gms-core is ``no_std`` and takes ``exp`` and
+``sincos`` from libm (FreeBSD's algorithms, which gms-batch's lanes reproduce bit for bit), numba
+calls the C library's faster ones. The level alone costs the library about 12 ns a step
+(measured apart: the same Leuven call without it took 51 ns a step).
 """
 
 from __future__ import annotations
@@ -55,6 +83,17 @@ DELTA_I = 1e-6 * np.arange(1, 11, dtype=np.float64)
 # its stability limit (dt·|v|·W/(Δ·g) reaches about 20: the elements chatter) and amplifies them,
 # to 3e-9 over 10 000 samples.
 AGREEMENT = {"implicit": 1e-12, "explicit": 1e-6}
+
+# The level of the one-channel Leuven row: a trend of ±10 % over the stroke and a ripple of a
+# 1 mm screw pitch, relative to the friction level.
+LEVEL_MIDDLE, LEVEL_HALF_STROKE, LEVEL_TREND = 0.0, 2e-3, (0.1, 0.05)
+PITCH, PITCH_COS, PITCH_SIN = 1e-3, 0.05, 0.02
+LEVEL = leuven_rt.PositionLevel(
+    middle=LEVEL_MIDDLE,
+    half_stroke=LEVEL_HALF_STROKE,
+    trend=LEVEL_TREND,
+    ripples=(leuven_rt.Ripple(period=PITCH, cos=(PITCH_COS,), sin=(PITCH_SIN,)),),
+)
 
 LUGRE = leuven_rt.Params(
     Fc=FC, Fs=FS, Vs=VS, delta=DELTA, n=1.0, sigma0=SIGMA0, sigma1=SIGMA1_LUGRE, sigma2=SIGMA2
@@ -220,19 +259,130 @@ def leuven_implicit(v: np.ndarray, out: np.ndarray) -> None:
             z = y
 
 
+@njit(cache=False)
+def lugre_channel(v: np.ndarray, out: np.ndarray) -> None:
+    z = 0.0
+    for t in range(v.shape[0]):
+        vk = v[t]
+        z_next = (z + DT * vk) / (1.0 + DT * abs(vk) * SIGMA0 / _stribeck(vk))
+        out[t] = SIGMA0 * z_next + SIGMA1_LUGRE * (z_next - z) / DT + SIGMA2 * vk
+        z = z_next
+
+
+@njit(cache=False)
+def lugre_channel_position(x: np.ndarray, out: np.ndarray) -> None:
+    z = 0.0
+    previous = x[0]  # v = 0 on the first sample
+    for t in range(x.shape[0]):
+        vk = (x[t] - previous) / DT
+        previous = x[t]
+        z_next = (z + DT * vk) / (1.0 + DT * abs(vk) * SIGMA0 / _stribeck(vk))
+        out[t] = SIGMA0 * z_next + SIGMA1_LUGRE * (z_next - z) / DT + SIGMA2 * vk
+        z = z_next
+
+
+@njit(cache=False)
+def _level_factor(x: float) -> float:
+    p = min(max((x - LEVEL_MIDDLE) / LEVEL_HALF_STROKE, -1.0), 1.0)
+    angle = 2.0 * math.pi * x / PITCH
+    trend = LEVEL_TREND[0] * p + LEVEL_TREND[1] * (1.5 * p * p - 0.5)
+    return 1.0 + trend + (PITCH_COS * math.cos(angle) + PITCH_SIN * math.sin(angle))
+
+
+@njit(cache=False)
+def leuven_channel_position_level(x: np.ndarray, out: np.ndarray) -> None:
+    stiffness = W / DELTA_I
+    zeta = np.zeros(W.shape[0])
+    z = 0.0
+    previous = x[0]  # v = 0 on the first sample
+    for t in range(x.shape[0]):
+        vk = (x[t] - previous) / DT
+        previous = x[t]
+        # The implicit step of leuven_implicit.
+        inverse_g = 1.0 / _stribeck(vk)
+        c = DT * abs(vk)
+        y = z
+        force, slope_left, slope_right, left, right = _trial(zeta, stiffness, DELTA_I, y)
+        u = force * inverse_g
+        r = -DT * vk + c * u * abs(u)
+        if r != 0.0:
+            lo, hi = (y, y - r) if r < 0.0 else (y - r, y)
+            while True:
+                rightward = r < 0.0
+                if rightward:
+                    slope, end = slope_right, min(right, hi)
+                else:
+                    slope, end = slope_left, max(left, lo)
+                beta = slope * inverse_g
+                q = (y - z) - DT * vk
+                s = -r if beta == 0.0 else _quadratic_step(r, q, force * inverse_g, beta, c)
+                s_end = end - y
+                if (rightward and s < s_end) or (not rightward and s > s_end):
+                    y = min(max(y + s, lo), hi)
+                    break
+                y = end
+                if end == lo or end == hi:
+                    break
+                force, slope_left, slope_right, left, right = _trial(zeta, stiffness, DELTA_I, y)
+                u = force * inverse_g
+                r = (y - z) - DT * vk + c * u * abs(u)
+                if r == 0.0:
+                    break
+                if r < 0.0:
+                    lo = y
+                else:
+                    hi = y
+        force = _commit(zeta, stiffness, DELTA_I, y) + SIGMA1 * (y - z) / DT + SIGMA2 * vk
+        # The level scales the contact force, not the viscous one.
+        viscous = SIGMA2 * vk
+        out[t] = _level_factor(x[t]) * (force - viscous) + viscous
+        z = y
+
+
 @dataclass(frozen=True)
 class Case:
+    """One row: the library's call on ``signal`` and the numba loop on it, with the scheme whose
+    agreement the peer must reach."""
+
     name: str
-    params: leuven_rt.Params
     scheme: str
+    library: Callable[[np.ndarray], np.ndarray]
     peer: Callable[[np.ndarray, np.ndarray], None]
 
 
+def velocity_run(params: leuven_rt.Params, scheme: str) -> Callable[[np.ndarray], np.ndarray]:
+    """The library on velocity input, (B, T) or (T,)."""
+    return lambda v: leuven_rt.simulate(params, v, DT, scheme)
+
+
 CASES = (
-    Case("LuGre, explicit", LUGRE, "explicit", lugre_explicit),
-    Case("LuGre, implicit", LUGRE, "implicit", lugre_implicit),
-    Case("Leuven N = 10, n = 2, explicit", LEUVEN, "explicit", leuven_explicit),
-    Case("Leuven N = 10, n = 2, implicit", LEUVEN, "implicit", leuven_implicit),
+    Case("LuGre, explicit", "explicit", velocity_run(LUGRE, "explicit"), lugre_explicit),
+    Case("LuGre, implicit", "implicit", velocity_run(LUGRE, "implicit"), lugre_implicit),
+    Case("Leuven N = 10, n = 2, explicit", "explicit", velocity_run(LEUVEN, "explicit"), leuven_explicit),
+    Case("Leuven N = 10, n = 2, implicit", "implicit", velocity_run(LEUVEN, "implicit"), leuven_implicit),
+)
+
+# One channel: (case, whether its signal is the position).
+CHANNEL_CASES = (
+    (Case("LuGre, implicit, velocity", "implicit", velocity_run(LUGRE, "implicit"), lugre_channel), False),
+    (
+        Case(
+            "LuGre, implicit, position",
+            "implicit",
+            lambda x: leuven_rt.simulate_position(LUGRE, x, DT, "implicit"),
+            lugre_channel_position,
+        ),
+        True,
+    ),
+    (
+        Case(
+            "Leuven N = 10, n = 2, implicit, position, level",
+            "implicit",
+            lambda x: leuven_rt.simulate_position(LEUVEN, x, DT, "implicit", level=LEVEL),
+            leuven_channel_position_level,
+        ),
+        True,
+    ),
 )
 
 
@@ -252,47 +402,74 @@ def seconds(run: Callable[[], object]) -> float:
     return time.perf_counter() - start
 
 
+def measure(case: Case, signal: np.ndarray, repeats: int, failures: list[str]) -> str:
+    """The row of ``case`` on ``signal``: both sides checked against each other, then timed
+    alternately."""
+    expected = case.library(signal)
+    out = np.empty_like(signal)
+    case.peer(signal, out)
+    scale = float(np.max(np.abs(expected)))
+    agreement = float(np.max(np.abs(out - expected))) / scale
+    if not agreement <= AGREEMENT[case.scheme]:
+        failures.append(f"{case.name}: numba and leuven-rt differ by {agreement:.1e} (relative)")
+    library_run = lambda: case.library(signal)  # noqa: E731
+    peer_run = lambda: case.peer(signal, out)  # noqa: E731
+    # Both were run once above (compiled, pages touched); now alternate, so that a burst of load
+    # elsewhere on the machine falls on both sides alike.
+    library_times, peer_times = [], []
+    for _ in range(repeats):
+        library_times.append(seconds(library_run))
+        peer_times.append(seconds(peer_run))
+    library = float(np.median(library_times)) / signal.size * 1e9
+    peer = float(np.median(peer_times)) / signal.size * 1e9
+    return f"| {case.name} | {library:.2f} | {peer:.2f} | {peer / library:.2f}x | {agreement:.0e} |"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small batch and 3 repeats (a smoke run)")
     args = parser.parse_args()
     # --quick: 35 channels, so that three run outside the batch kernel's groups of eight.
     channels, samples, repeats = (35, 2_000, 3) if args.quick else (256, 10_000, 7)
+    # One channel: short calls, so more of them.
+    channel_samples, channel_repeats = (20_000, 3) if args.quick else (100_000, 21)
     v = inputs(channels, samples)
-    steps = channels * samples
     import numba
 
     load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
+    header = "| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt | agree to |"
     print("# leuven-rt against numba, one core" + (" (--quick)" if args.quick else ""))
     print()
     print(
-        f"B = {channels} channels x T = {samples:,} samples at 1 kHz; numba {numba.__version__}, "
-        f"Python {platform.python_version()}, {platform.machine()}; load average {load}; "
-        f"median of {repeats} runs, the two sides alternating"
+        f"numba {numba.__version__}, Python {platform.python_version()}, {platform.machine()}; "
+        f"load average {load} at the start"
     )
     print()
-    print("| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt | agree to |")
+    print(
+        f"## A batch: B = {channels} channels x T = {samples:,} samples at 1 kHz; median of {repeats} "
+        "runs, the two sides alternating"
+    )
+    print()
+    print(header)
     print("|---|---:|---:|---:|---:|")
-    failures = []
+    failures: list[str] = []
     for case in CASES:
-        expected = leuven_rt.simulate(case.params, v, DT, case.scheme)
-        out = np.empty_like(v)
-        case.peer(v, out)
-        scale = float(np.max(np.abs(expected)))
-        agreement = float(np.max(np.abs(out - expected))) / scale
-        if not agreement <= AGREEMENT[case.scheme]:
-            failures.append(f"{case.name}: numba and leuven-rt differ by {agreement:.1e} (relative)")
-        library_run = lambda c=case: leuven_rt.simulate(c.params, v, DT, c.scheme)  # noqa: E731
-        peer_run = lambda c=case, out=out: c.peer(v, out)  # noqa: E731
-        # Both were run once above (compiled, pages touched); now alternate, so that a burst of
-        # load elsewhere on the machine falls on both sides alike.
-        library_times, peer_times = [], []
-        for _ in range(repeats):
-            library_times.append(seconds(library_run))
-            peer_times.append(seconds(peer_run))
-        library = float(np.median(library_times)) / steps * 1e9
-        peer = float(np.median(peer_times)) / steps * 1e9
-        print(f"| {case.name} | {library:.2f} | {peer:.2f} | {peer / library:.2f}x | {agreement:.0e} |")
+        print(measure(case, v, repeats, failures))
+    print()
+    print(
+        f"## One channel: T = {channel_samples:,} samples at 1 kHz, the whole call; median of "
+        f"{channel_repeats} runs, the two sides alternating"
+    )
+    print()
+    print(header)
+    print("|---|---:|---:|---:|---:|")
+    velocity = inputs(1, channel_samples)[0]
+    position = np.cumsum(velocity) * DT
+    for case, by_position in CHANNEL_CASES:
+        print(measure(case, position if by_position else velocity, channel_repeats, failures))
+    load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
+    print()
+    print(f"load average {load} at the end")
     if failures:
         sys.exit("\n".join(failures))
 

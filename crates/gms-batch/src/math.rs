@@ -18,6 +18,33 @@ pub(crate) trait Exponent: Copy {
     fn power_less_one(self) -> Power {
         Power::new(self.n() - 1.0)
     }
+    /// The spring's stiffness when the implicit step is solved in closed form ([`Closed`]).
+    #[inline(always)]
+    fn closed_form(self) -> Option<f64> {
+        None
+    }
+}
+
+/// n = 1 with a linear spring, implicit: LuGre's closed form (gms-core's `linear_root`), whose
+/// step needs no φ.
+#[derive(Clone, Copy)]
+pub(crate) struct Closed {
+    pub stiffness: f64,
+}
+
+impl Exponent for Closed {
+    #[inline(always)]
+    fn phi(self, u: f64) -> f64 {
+        One.phi(u)
+    }
+    #[inline(always)]
+    fn n(self) -> f64 {
+        1.0
+    }
+    #[inline(always)]
+    fn closed_form(self) -> Option<f64> {
+        Some(self.stiffness)
+    }
 }
 
 /// n = 1: φ(u) = u (copysign(|u|, u) is u, NaN included).

@@ -39,7 +39,7 @@ pub struct Solution {
     pub z: f64,
     /// Evaluations of the hysteresis map (each O(N): Fh at the iterate and the piece toward the
     /// root), the one at z included; at most 2N + 1 for N Maxwell-slip elements, 2 for a linear
-    /// spring.
+    /// spring (1 with n = 1: that step is solved in closed form, without the walk).
     pub iterations: u32,
 }
 
@@ -319,6 +319,22 @@ impl PieceEquation {
         }
         Some(0.5 * (a + b))
     }
+}
+
+/// The root of R for Fh(y) = k·y and n = 1: R(y) = (y − z) − dt·v + dt·|v|·k·y/g is linear in
+/// y, so y = (z + dt·v)/(1 + dt·|v|·k/g), written as (z + dt·v)·(g/(g + dt·|v|·k)) with the
+/// factor from [`linear_factor`]: one division, and none that depends on z, so that a run of
+/// steps is a chain of one addition and one multiplication. v = 0 gives z exactly.
+#[inline]
+pub(crate) fn linear_root(z: f64, dt_v: f64, factor: f64) -> f64 {
+    (z + dt_v) * factor
+}
+
+/// g/(g + dt·|v|·k), the factor of [`linear_root`]: in (0, 1], and it cancels nothing (g > 0,
+/// dt·|v|·k ≥ 0). It depends on the input alone.
+#[inline]
+pub(crate) fn linear_factor(dt_abs_v: f64, stiffness: f64, g: f64) -> f64 {
+    g / (g + dt_abs_v * stiffness)
 }
 
 /// Root of P(s) = s + q + c·φ(α + β·s) for n = 2 (φ(u) = u·|u|), β > 0, c ≥ 0, where

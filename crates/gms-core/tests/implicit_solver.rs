@@ -304,3 +304,35 @@ fn extremely_stiff_elements_still_move() {
         }
     }
 }
+
+/// LuGre's classic form (a linear spring, n = 1) is solved in closed form: one "evaluation",
+/// no piece walk, and the root of R to rounding, from sliding and reversing states alike.
+#[test]
+fn lugre_with_n_one_is_closed_form() {
+    let stribeck = Stribeck::asymmetric(1.0, 1.5, 0.8, 1.3, 1e-3, 2.0).expect("valid curve");
+    let spring = Linear::new(1e5).expect("valid stiffness");
+    let params = Params::new(stribeck, 1.0, 316.0, 0.4, spring).expect("valid parameters");
+    for z in [0.0, 1e-5, -1.3e-5, 2e-9] {
+        for v in [0.0, 1e-9, -1e-6, 3e-3, -0.2, 10.0] {
+            let state = State {
+                z,
+                memory: (),
+                last_position: None,
+            };
+            let Solution {
+                z: root,
+                iterations,
+            } = params.solve_implicit(&state, v, 1e-3);
+            assert_eq!(iterations, 1, "z = {z:e}, v = {v:e}");
+            let h = 4.0 * f64::EPSILON * (z.abs() + root.abs() + 1e-3 * v.abs()) + 1e-300;
+            let (below, above) = (
+                params.implicit_residual(&state, v, 1e-3, root - h),
+                params.implicit_residual(&state, v, 1e-3, root + h),
+            );
+            assert!(
+                below <= 0.0 && above >= 0.0,
+                "z = {z:e}, v = {v:e}: root {root:e}, R = {below:e}, {above:e} at ±{h:e}"
+            );
+        }
+    }
+}

@@ -7,8 +7,8 @@ mod common;
 use common::config;
 use core::f64::consts::TAU;
 use gms_core::{
-    Compensator, Error, Field, LeuvenParams, Level, MaxwellSlip, Mode, Params, PositionForce,
-    PositionSeries, RippleTerms, Scheme, Stribeck, MAX_HARMONICS,
+    Compensator, Error, Field, LeuvenParams, Level, Linear, MaxwellSlip, Mode, Params,
+    PositionForce, PositionSeries, RippleTerms, Scheme, State, Stribeck, MAX_HARMONICS,
 };
 use proptest::prelude::*;
 
@@ -786,6 +786,104 @@ fn block_run_with_the_terms_is_the_observer() {
             field: Field::x,
             index: 100,
             value: f64::NAN
+        })
+    );
+    assert_eq!(state, before);
+}
+
+/// A block call of one LuGre channel from a state, writing the forces.
+type BlockCall<'a> = dyn Fn(&mut State<()>, &mut [f64]) -> Result<(), Error> + 'a;
+
+/// LuGre's implicit block calls compute the factor of the closed form 64 samples ahead; over
+/// many such chunks they are still the single steps bit for bit (the compensator's, with and
+/// without the terms), and a refused sample past the first chunk is named, the state left as it
+/// was.
+#[test]
+fn lugre_block_runs_are_the_single_steps() {
+    let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
+    let params = Params::new(stribeck, 1.0, 316.0, 0.4, Linear::new(1e5).unwrap())
+        .and_then(|params| params.with_sigma2_neg(0.7))
+        .unwrap();
+    let (level, force) = (screw_level(), cogging());
+    let x = trajectory(2500);
+    let v: Vec<f64> = (0..x.len())
+        .map(|k| 1.5e-2 * libm::sin(0.013 * k as f64))
+        .collect();
+    let run = |call: &BlockCall| {
+        let (mut state, mut out) = (params.relaxed_state(), vec![0.0; x.len()]);
+        call(&mut state, &mut out).unwrap();
+        (state, out)
+    };
+    let (_, out) = run(&|state, out| params.simulate(state, &v, DT, Scheme::Implicit, out));
+    let mut state = params.relaxed_state();
+    for (&v, &force) in v.iter().zip(&out) {
+        let want = params.step(&mut state, v, DT, Scheme::Implicit).unwrap();
+        assert_eq!(want.to_bits(), force.to_bits());
+    }
+
+    let (_, out) =
+        run(&|state, out| params.simulate_position(state, &x, DT, Scheme::Implicit, out));
+    let mut state = params.relaxed_state();
+    for (&x, &force) in x.iter().zip(&out) {
+        let want = params
+            .step_position(&mut state, x, DT, Scheme::Implicit)
+            .unwrap();
+        assert_eq!(want.to_bits(), force.to_bits());
+    }
+
+    let (_, out) = run(&|state, out| {
+        params.simulate_position_level(state, &x, DT, Scheme::Implicit, &level, &force, out)
+    });
+    let mut observer = Compensator::new(params, DT, Mode::Observer)
+        .and_then(|c| c.with_level(level))
+        .and_then(|c| c.with_position_force(force))
+        .unwrap();
+    for (&x, &force) in x.iter().zip(&out) {
+        assert_eq!(observer.step(x).unwrap().to_bits(), force.to_bits());
+    }
+
+    let (state, out) = run(&|state, out| {
+        params.simulate_level(state, &v, &x, DT, Scheme::Implicit, &level, &force, out)
+    });
+    let mut compensator = Compensator::new(params, DT, Mode::Feedforward)
+        .and_then(|c| c.with_start_position(x[0]))
+        .and_then(|c| c.with_level(level))
+        .and_then(|c| c.with_position_force(force))
+        .unwrap();
+    for ((&v, &x), &want) in v.iter().zip(&x).zip(&out) {
+        assert_eq!(
+            compensator.step_trajectory(v, x).unwrap().to_bits(),
+            want.to_bits()
+        );
+    }
+    assert_eq!(state, *compensator.state());
+
+    // Refusals past the first chunk: a NaN position, and a position step whose velocity
+    // overflows (found while stepping, after the factors of its chunk were computed).
+    let (mut state, mut out) = (params.relaxed_state(), vec![0.0; x.len()]);
+    params
+        .simulate_position(&mut state, &x[..70], DT, Scheme::Implicit, &mut out[..70])
+        .unwrap();
+    let before = state;
+    let mut bad = x.clone();
+    bad[130] = f64::NAN;
+    assert_eq!(
+        params.simulate_position(&mut state, &bad, DT, Scheme::Implicit, &mut out),
+        Err(Error::NotFinite {
+            field: Field::x,
+            index: 130,
+            value: f64::NAN
+        })
+    );
+    assert_eq!(state, before);
+    let mut far = x.clone();
+    far[200] = 1e306;
+    assert_eq!(
+        params.simulate_position(&mut state, &far, DT, Scheme::Implicit, &mut out),
+        Err(Error::NotFinite {
+            field: Field::v,
+            index: 200,
+            value: f64::INFINITY
         })
     );
     assert_eq!(state, before);

@@ -54,6 +54,11 @@ impl Hysteresis for Linear {
         f64::INFINITY
     }
 
+    #[inline]
+    fn linear_stiffness(&self) -> Option<f64> {
+        Some(self.sigma0)
+    }
+
     /// |σ0·z|: the very product `commit` returns.
     #[inline]
     fn force_bound(&self, z: f64) -> f64 {

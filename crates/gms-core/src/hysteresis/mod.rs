@@ -82,6 +82,15 @@ pub trait Hysteresis {
     /// sup |Fh| over all z (infinite for a linear spring).
     fn max_force(&self) -> f64;
 
+    /// `Some(k)` if Fh(z) = k·z for every z and every memory (a spring that never slips), as
+    /// `force` and `commit` compute it. With n = 1 the implicit step is then linear in z⁺ and
+    /// solved in closed form, without the piece walk (docs/model.md#discrete-step). The
+    /// default, `None`, is right for any other hysteresis.
+    #[inline]
+    fn linear_stiffness(&self) -> Option<f64> {
+        None
+    }
+
     /// A bound on |Fh(z)| for every memory a channel can hold at deflection `z`, as `commit`
     /// computes it (rounding included, for bounds below half the f64 range). A memory holding
     /// a NaN has no bound, but never reaches the commit: its Fh is NaN, so is z⁺ (the implicit
