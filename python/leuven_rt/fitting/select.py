@@ -421,15 +421,11 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     weight = np.ones(samples)
     edge = min(EDGE, samples // 10)
     weight[:edge], weight[samples - edge :] = 0.0, 0.0
-    if reconstruction.source == "position":
-        # Where the counts reverse only by the position's noise, the reversals to leave out are
-        # those of the motion the model is driven by.
-        counted = (
-            motion.x
-            if reconstruction.cutoff is not None and noisy_position(record.x, record.dt)
-            else record.x
-        )
-        weight[ambiguous_samples(counted, filter_margin(reconstruction, record.dt))] = 0.0
+    if reconstruction.source == "position" and not noisy_position(record.x, record.dt):
+        # An encoder's reversals are ambiguous from the last count to the first; a position whose
+        # noise spans counts has no such window (its low-pass is the motion), and its reversals
+        # are where presliding shows.
+        weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
