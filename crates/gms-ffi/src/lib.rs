@@ -341,20 +341,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json(
     out: *mut *mut leuven_rt_compensator,
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
-    // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
-        let mode = checked_mode(mode)?;
-        if json.is_null() || len > isize::MAX as usize {
-            return Err(Refusal::pointer("json"));
-        }
-        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
-        // alignment.
-        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, None, out)
-    });
-    finish(created, error)
+    // SAFETY: the caller's contract is this function's.
+    unsafe { create_from_json(json, len, dt, mode, None, out, error) }
 }
 
 /// `leuven_rt_compensator_create_from_json` with the axis's start position `x` [m or rad]:
@@ -375,20 +363,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_json_at(
     out: *mut *mut leuven_rt_compensator,
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
-    // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
-        let mode = checked_mode(mode)?;
-        if json.is_null() || len > isize::MAX as usize {
-            return Err(Refusal::pointer("json"));
-        }
-        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
-        // alignment.
-        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
-        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, Some(x), out)
-    });
-    finish(created, error)
+    // SAFETY: the caller's contract is this function's.
+    unsafe { create_from_json(json, len, dt, mode, Some(x), out, error) }
 }
 
 /// Creates a compensator from a model file or parameter file at `path` (a NUL-terminated file
@@ -407,27 +383,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file(
     out: *mut *mut leuven_rt_compensator,
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
-    // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
-        let mode = checked_mode(mode)?;
-        if path.is_null() {
-            return Err(Refusal::pointer("path"));
-        }
-        // SAFETY: non-null and NUL-terminated by the caller's contract.
-        let path = unsafe { CStr::from_ptr(path) };
-        let path = std::path::Path::new(path.to_str().map_err(|_| {
-            Refusal::new(
-                LEUVEN_RT_INVALID_FILE,
-                c"",
-                0,
-                format_args!("the path is not UTF-8"),
-            )
-        })?);
-        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, None, out)
-    });
-    finish(created, error)
+    // SAFETY: the caller's contract is this function's.
+    unsafe { create_from_path(path, dt, mode, None, out, error) }
 }
 
 /// `leuven_rt_compensator_create_from_file` with the axis's start position `x`, as
@@ -444,27 +401,8 @@ pub unsafe extern "C" fn leuven_rt_compensator_create_from_file_at(
     out: *mut *mut leuven_rt_compensator,
     error: *mut leuven_rt_error,
 ) -> leuven_rt_status {
-    // SAFETY: the caller passes null or valid pointers (the function's contract).
-    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
-    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
-        let mode = checked_mode(mode)?;
-        if path.is_null() {
-            return Err(Refusal::pointer("path"));
-        }
-        // SAFETY: non-null and NUL-terminated by the caller's contract.
-        let path = unsafe { CStr::from_ptr(path) };
-        let path = std::path::Path::new(path.to_str().map_err(|_| {
-            Refusal::new(
-                LEUVEN_RT_INVALID_FILE,
-                c"",
-                0,
-                format_args!("the path is not UTF-8"),
-            )
-        })?);
-        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
-        from_file(&file, dt, mode, Some(x), out)
-    });
-    finish(created, error)
+    // SAFETY: the caller's contract is this function's.
+    unsafe { create_from_path(path, dt, mode, Some(x), out, error) }
 }
 
 /// Destroys a compensator made by `leuven_rt_compensator_create`. Null is ignored.
@@ -1007,6 +945,72 @@ impl fmt::Write for Message {
         }
         Ok(())
     }
+}
+
+/// The work of `leuven_rt_compensator_create_from_json` and `_at`: `x` is the start position
+/// (`None` without one).
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_json`.
+unsafe fn create_from_json(
+    json: *const c_char,
+    len: usize,
+    dt: f64,
+    mode: i32,
+    x: Option<f64>,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if json.is_null() || len > isize::MAX as usize {
+            return Err(Refusal::pointer("json"));
+        }
+        // SAFETY: non-null, `len` readable bytes by the caller's contract; bytes need no
+        // alignment.
+        let text = unsafe { core::slice::from_raw_parts(json.cast::<u8>(), len) };
+        let file = ModelFile::from_slice(text).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, x, out)
+    });
+    finish(created, error)
+}
+
+/// The work of `leuven_rt_compensator_create_from_file` and `_at`: `x` is the start position
+/// (`None` without one).
+///
+/// # Safety
+/// As `leuven_rt_compensator_create_from_file`.
+unsafe fn create_from_path(
+    path: *const c_char,
+    dt: f64,
+    mode: i32,
+    x: Option<f64>,
+    out: *mut *mut leuven_rt_compensator,
+    error: *mut leuven_rt_error,
+) -> leuven_rt_status {
+    // SAFETY: the caller passes null or valid pointers (the function's contract).
+    let (out, error) = unsafe { (checked_mut(out), checked_mut(error)) };
+    let created = out.ok_or_else(|| Refusal::pointer("out")).and_then(|out| {
+        let mode = checked_mode(mode)?;
+        if path.is_null() {
+            return Err(Refusal::pointer("path"));
+        }
+        // SAFETY: non-null and NUL-terminated by the caller's contract.
+        let path = unsafe { CStr::from_ptr(path) };
+        let path = std::path::Path::new(path.to_str().map_err(|_| {
+            Refusal::new(
+                LEUVEN_RT_INVALID_FILE,
+                c"",
+                0,
+                format_args!("the path is not UTF-8"),
+            )
+        })?);
+        let file = ModelFile::load(path).map_err(|reason| Refusal::from_file(&reason))?;
+        from_file(&file, dt, mode, x, out)
+    });
+    finish(created, error)
 }
 
 /// The status of a call, with `error` (if given) written for every status.
