@@ -71,17 +71,16 @@ class Reconstruction:
         if self.cutoff is not None:
             object.__setattr__(self, "cutoff", _real("reconstruction.cutoff", self.cutoff))
 
+    def to_dict(self) -> dict[str, Any]:
+        """The file's ``reconstruction`` object."""
+        return {"source": self.source, "cutoff": self.cutoff}
+
 
 def _object(value: Any, kind: type) -> Any:
     """``value`` as its JSON object when it is an instance of ``kind``, as given otherwise (a
     mapping, None, or something the reader refuses naming the key)."""
-    if isinstance(value, kind):
-        if isinstance(value, (PositionLevel, PositionForce)):
-            return value.to_dict()
-        if isinstance(value, Reconstruction):
-            return {"source": value.source, "cutoff": value.cutoff}
-        if isinstance(value, Params):
-            return value.to_dict()
+    if isinstance(value, kind) and isinstance(value, (PositionLevel, PositionForce, Reconstruction, Params)):
+        return value.to_dict()
     return value
 
 

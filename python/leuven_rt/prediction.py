@@ -88,9 +88,7 @@ class Prediction:
     def to_dict(self) -> dict[str, object]:
         """The summary of ``predict --json``."""
         return {"rms": self.rms, "rms_causal": self.rms_causal, "samples": self.samples, "units": self.units,
-                "reconstruction": {"source": self.reconstruction.source,
-                                   "cutoff": self.reconstruction.cutoff},
-                "warnings": list(self.notes)}  # fmt: skip
+                "reconstruction": self.reconstruction.to_dict(), "warnings": list(self.notes)}  # fmt: skip
 
     def to_csv(self, path: str | PathLike[str], force: bool = False) -> Path:
         """Writes the columns ``t,f,f_model,friction`` (a header line, then the numbers in full

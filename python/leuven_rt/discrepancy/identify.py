@@ -150,7 +150,7 @@ def _identification(
         where = f"the friction level changes over the record (a drift, outside the catalogue); {where}"
     elif significant and (strongest := left.strongest()) is not None:
         where = f"it follows the {strongest}; {where}"
-    described = {**reconstruction_dict(reconstruction), "description": describe(reconstruction)}
+    described = {**reconstruction.to_dict(), "description": describe(reconstruction)}
     diagnosis = Diagnosis(
         samples=record.samples, noise_std=run.noise, floor_estimate=run.floor.full, reconstruction=described,
         gross_errors=run.gross,
@@ -169,10 +169,6 @@ def _identification(
         report["data_notes"] = list(record.notes)
     model = dataclasses.replace(written, report=report)
     return Identification(model, diagnosis, tuple(warnings))
-
-
-def reconstruction_dict(reconstruction: Any) -> dict[str, Any]:
-    return {"source": reconstruction.source, "cutoff": reconstruction.cutoff}
 
 
 def _params(effect: str, fitted: Fitted, written: ModelFile) -> dict[str, Any]:

@@ -10,6 +10,7 @@ alongside while selecting is never written.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -18,6 +19,7 @@ from ..level import PositionForce, PositionLevel, Ripple
 from ..modelfile import ModelFile, Reconstruction
 from ..params import Params
 from ..units import Units
+from .evaluate import params_of
 from .structure import Scales, Values
 
 #: An element whose weight is below this share of the largest is left out of the file.
@@ -28,12 +30,7 @@ def friction_params(values: Values) -> Params:
     """The friction model of ``values``, without elements of negligible weight."""
     weights = np.asarray(values.W, dtype=float)
     keep = weights > NEGLIGIBLE * float(weights.max())
-    friction: dict[str, Any] = {key: value for key, value in values.friction.items() if value is not None}
-    return Params(
-        **friction,
-        W=tuple(float(w) for w in weights[keep]),
-        Delta=tuple(float(d) for d in np.asarray(values.Delta)[keep]),
-    )
+    return params_of(replace(values, W=weights[keep], Delta=np.asarray(values.Delta)[keep]))
 
 
 def _terms(terms: Any, scales: Scales) -> dict[str, Any] | None:

@@ -386,8 +386,7 @@ def reconstruction_options(record: MotionData) -> list[Reconstruction]:
 def full_mse(fitted: Fitted, target: Target) -> float:
     """The mean squared simulation error over every sample but the filter's edges: what
     :func:`leuven_rt.predict` reports, whatever the weights."""
-    edge = min(EDGE, target.force.size // 10)
-    error = (fitted.force - target.force)[edge : target.force.size - edge]
+    error = (fitted.force - target.force)[_every_sample(target.force.size) > 0]
     return float(np.mean(error**2))
 
 
@@ -418,9 +417,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     """The target (force, weights, motion) and scales of ``record`` under ``reconstruction``."""
     motion = reconstruct(record, reconstruction)
     samples = record.t.size
-    weight = np.ones(samples)
-    edge = min(EDGE, samples // 10)
-    weight[:edge], weight[samples - edge :] = 0.0, 0.0
+    weight = _every_sample(samples)
     if reconstruction.source == "position" and not noisy_position(record.x, record.dt):
         # An encoder's reversals are ambiguous from the last count to the first; a position whose
         # noise spans counts has no such window (its low-pass is the motion), and its reversals
