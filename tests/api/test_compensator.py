@@ -175,3 +175,34 @@ def test_new_parameters_must_have_the_same_kind_and_size() -> None:
         ParameterError,
         r"must be a leuven_rt.Params or a mapping",
     )
+
+
+def test_a_model_file_or_its_path_runs_its_friction_and_its_own_terms(tmp_path: Any) -> None:
+    from leuven_rt import ModelFile, Params, PositionLevel
+
+    level = PositionLevel(middle=0.0, half_stroke=1e-2, trend=(0.2, 0.0))
+    model = ModelFile(friction=Params(**MAXWELL), level=level, offset=0.5, inertia=2.0)
+    path = tmp_path / "model.json"
+    model.save(path)
+    x = 1e-3 * np.sin(np.linspace(0.0, 6.0, 300))
+    direct = Compensator(Params(**MAXWELL), 1e-3, "observer", level=level)
+    expected = [direct.step(float(value)) for value in x]
+    for source in (model, path, str(path)):
+        compensator = Compensator(source, 1e-3, "observer")
+        assert compensator.level == level
+        # The measurement terms (offset, inertia) are the sensor's, not the friction's.
+        assert [compensator.step(float(value)) for value in x] == expected
+
+
+def test_a_model_file_with_terms_given_beside_it_is_refused(tmp_path: Any) -> None:
+    from leuven_rt import ModelFile, Params, PositionLevel
+    from leuven_rt.errors import ModelFileError
+
+    model = ModelFile(friction=Params(**MAXWELL))
+    level = PositionLevel(middle=0.0, half_stroke=1e-2, trend=(0.2, 0.0))
+    with pytest.raises(InputError, match=r"^`level` must be None when the model is a model file") as caught:
+        Compensator(model, 1e-3, "observer", level=level)
+    assert (caught.value.kind, caught.value.field) == ("not_applicable", "level")
+    with pytest.raises(ModelFileError) as missing:
+        Compensator(tmp_path / "missing.json", 1e-3, "observer")
+    assert missing.value.kind == "unreadable_file"
