@@ -7,7 +7,13 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from leuven_rt.data.reconstruction import ambiguous_samples, noisy_position, resolution, travel_since_reversal
+from leuven_rt.data.reconstruction import (
+    ambiguous_samples,
+    median_excursion,
+    noisy_position,
+    resolution,
+    travel_since_reversal,
+)
 from leuven_rt.data.signals import residual_noise
 from leuven_rt.fitting.remains import functions, remains
 
@@ -106,3 +112,21 @@ def test_a_position_whose_noise_reverses_it_is_told_from_an_encoder() -> None:
     # A position estimate with noise of ten counts reverses at every other sample of slow motion.
     estimate = np.round((x + rng.normal(0.0, 1e-5, t.size)) / 1e-6) * 1e-6
     assert noisy_position(estimate, dt)
+
+
+def test_a_servo_dithering_by_a_count_keeps_the_travel_of_its_strokes() -> None:
+    # Strokes of 2 mm between reversals, read by a 1 µm encoder, with the position dithering by
+    # one count back and forth at every other sample where the motion is slow.
+    t = np.linspace(0.0, 4.0, 40_001)
+    x = 1e-3 * np.sin(2.0 * np.pi * t)
+    step = 1e-6
+    counts = np.floor(x / step)
+    slow = np.abs(np.cos(2.0 * np.pi * t)) < 0.05
+    counts[slow] += np.arange(counts.size)[slow] % 2
+    encoder = counts * step
+    assert median_excursion(encoder, 0.0) <= 2 * step  # every dither is a reversal
+    assert median_excursion(encoder, 2 * step) == pytest.approx(2e-3, rel=0.01)
+    # Reversals farther apart than the band are all kept: a band of 2 counts changes nothing
+    # for a clean encoder.
+    clean = np.floor(x / step) * step
+    assert median_excursion(clean, 2 * step) == pytest.approx(median_excursion(clean, 0.0), rel=1e-3)

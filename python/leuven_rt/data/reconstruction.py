@@ -162,6 +162,33 @@ def noisy_position(x: FloatArray, dt: float) -> bool:
     return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)
 
 
+def median_excursion(x: FloatArray, band: float) -> float:
+    """The median travel between reversals, a reversal counted once the position has come back
+    by more than ``band`` from its furthest point: a servo holding its set point dithers by a
+    count or two at every other sample, and those reversals are not the strokes the presliding
+    bank has to span."""
+    steps = np.diff(x)
+    moves = np.flatnonzero(steps)
+    if moves.size == 0:
+        return 0.0
+    points = [float(x[0])]
+    furthest = float(x[0])
+    direction = 0.0
+    for value in x[moves + 1].tolist():
+        if direction == 0.0:
+            if abs(value - points[0]) > band:
+                direction = math.copysign(1.0, value - points[0])
+                furthest = value
+        elif (value - furthest) * direction > 0.0:
+            furthest = value
+        elif (furthest - value) * direction > band:
+            points.append(furthest)
+            direction, furthest = -direction, value
+    points.append(furthest)
+    travels = np.abs(np.diff(points))
+    return float(np.median(travels))
+
+
 def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
     """|x − x at the last change of the direction of motion| at every sample."""
     direction = np.sign(v)
@@ -189,6 +216,7 @@ __all__ = [
     "describe",
     "differences",
     "filter_margin",
+    "median_excursion",
     "noisy_position",
     "reconstruct",
     "resolution",

@@ -29,6 +29,7 @@ from .._typing import FloatArray
 from ..data.reconstruction import (
     ambiguous_samples,
     filter_margin,
+    median_excursion,
     noisy_position,
     reconstruct,
     resolution,
@@ -55,6 +56,12 @@ EDGE = 20
 #: The zero-phase low-passes of the position the written file may use, as shares of the Nyquist
 #: frequency.
 FILTERS = (0.2, 0.05)
+#: Effects that can stand in for each other: an offset and a −x level of its own both shift the
+#: level of one direction of motion against the other's.
+STAND_INS = (("offset", "asymmetry"),)
+#: A reversal of the position counts, for the span of the presliding bank, once the position has
+#: come back by more than this many encoder steps.
+REVERSAL_BAND = 2.0
 #: Errors are counted robustly at this many times the noise (the forward rounds' noise, at or
 #: below the noise): Cauchy's loss, which is the squared error up to about that scale.
 ROBUST = 5.0
@@ -173,6 +180,7 @@ def _select_on(
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
+    final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
     drifting = fit(final.structure.with_drift(), scales, target, final.theta)
     drift = _significant(final, drifting, target, settings.drift * unit, settings)
     without = final
@@ -182,6 +190,7 @@ def _select_on(
         steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
         noise, floor, unit = _evidence(final, target, floor, scales)
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
+        final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
     return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
 
@@ -241,6 +250,44 @@ def _prune(
         pruned = True
     if not pruned:
         return final, steps
+    return final, _regrow(base, final, added, scales, target)
+
+
+def _exchange(
+    base: Fitted,
+    final: Fitted,
+    steps: list[Step],
+    scales: Scales,
+    target: Target,
+    settings: Settings,
+    unit: float,
+    say: Progress,
+) -> tuple[Fitted, list[Step]]:
+    """``final`` with a named effect replaced by its stand-in (:data:`STAND_INS`) where the
+    exchange gains more than the threshold. Once one of the pair is in, the other added on top
+    of it starts in a flat valley (both shift one direction's level against the other's) that a
+    screened fit does not leave, so the better of the two is found by trying it in the other's
+    place."""
+    added = [step.effect for step in steps]
+    for pair in STAND_INS:
+        for named, other in (pair, pair[::-1]):
+            if named not in added or final.structure.has(other):
+                continue
+            structure = final.structure.without(named).with_effect(other)
+            theta = {name: value for name, value in final.theta.items() if name in structure.names()
+                     or name in structure.share_names(scales.deltas.size)}  # fmt: skip
+            swapped = fit(structure, scales, target, theta, SCREEN)
+            if not _significant(final, swapped, target, settings.significance * unit, settings):
+                continue
+            say(f"{other} in place of {named}: gains {(final.mse - swapped.mse) / unit:.2f} units")
+            final = fit(swapped.structure, scales, target, swapped.theta)
+            added[added.index(named)] = other
+            steps = _regrow(base, final, added, scales, target)
+    return final, steps
+
+
+def _regrow(base: Fitted, final: Fitted, added: list[str], scales: Scales, target: Target) -> list[Step]:
+    """The steps that add ``added`` to ``base`` in their order, the last ending at ``final``."""
     kept: list[Step] = []
     current = base
     for effect in added:
@@ -250,7 +297,7 @@ def _prune(
         current = grown
     if kept:
         kept[-1] = Step(kept[-1].effect, kept[-1].before, final)
-    return final, kept
+    return kept
 
 
 def _unit(noise: float, floor: Floor, scales: Scales) -> float:
@@ -442,7 +489,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
     stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
     lowest = max(3.0 * step, 1e-5 * stroke)
-    highest = max(min(0.02 * stroke, 0.5 * _excursion(record.x)), 30.0 * lowest)
+    highest = max(min(0.02 * stroke, 0.5 * median_excursion(record.x, REVERSAL_BAND * step)), 30.0 * lowest)
     grid = np.geomspace(lowest, highest, ELEMENTS)
     # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
     # of the widest Δ (docs/parameters.md#rules).
@@ -453,18 +500,6 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     tau = np.linspace(-1.0, 1.0, samples)
     stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
     return Target(record.f, weight, motion, tau, record.x, stride), scales
-
-
-def _excursion(x: FloatArray) -> float:
-    """The median travel between reversals."""
-    steps = np.diff(x)
-    steps = steps[steps != 0]
-    if steps.size == 0:
-        return 0.0
-    turns = np.flatnonzero(np.sign(steps[1:]) != np.sign(steps[:-1]))
-    path = np.cumsum(steps)
-    points = np.concatenate(([0.0], path[turns], [path[-1]]))
-    return float(np.median(np.abs(np.diff(points))))
 
 
 def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:
