@@ -87,7 +87,9 @@ def test_the_report_follows_the_documented_layout() -> None:
     assert report["samples"] == diagnosis.samples and report["baseline"] == list(BASE)
     assert report["named_effects"] == ["inertia"]
     (step,) = report["steps"]
-    assert set(step) == {"effect", "where", "rms_before", "rms_after", "params"}
+    assert set(step) == {"effect", "where", "rms_before", "rms_after", "robust_before", "robust_after",
+                         "params"}  # fmt: skip
+    assert step["robust_after"] < step["robust_before"]
     assert step["rms_after"] < step["rms_before"]
     assert step["params"]["inertia"] == pytest.approx(0.05, rel=0.1)  # the generator's mass
     assert set(report["unexplained"]) == {"significant", "where", "drift"}

@@ -24,6 +24,12 @@ class Step:
     rms_before: float
     rms_after: float
     params: dict[str, Any]
+    robust_before: float
+    """The error the rounds weighed when they chose the effect, before and after [N or N·m]: the
+    root of the robust mean loss over the samples the fit uses, where a gross error counts little
+    more than one at the robust scale. Over every sample an effect can raise the rms while it
+    lowers this (its models are fitted to this)."""
+    robust_after: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,6 +87,8 @@ class Diagnosis:
                     "where": s.where,
                     "rms_before": s.rms_before,
                     "rms_after": s.rms_after,
+                    "robust_before": s.robust_before,
+                    "robust_after": s.robust_after,
                     "params": s.params,
                 }
                 for s in self.steps
@@ -121,7 +129,8 @@ class Diagnosis:
         for number, step in enumerate(self.steps, 1):
             values = ", ".join(f"{key} = {_show(value)}" for key, value in step.params.items())
             lines.append(f"step {number}: missing `{step.effect}` ({values}); rms {step.rms_before:.3g} -> "
-                         f"{step.rms_after:.3g} {N}; where: {step.where}")  # fmt: skip
+                         f"{step.rms_after:.3g} {N} (robust, as chosen: {step.robust_before:.3g} -> "
+                         f"{step.robust_after:.3g} {N}); where: {step.where}")  # fmt: skip
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
