@@ -27,24 +27,35 @@ loop is serial. Before timing, the peer's forces are compared with the library's
 between two different computations would mean nothing.
 
 Prints two markdown tables: ns per channel-step for each, and the ratio numba / leuven-rt (above
-1: the library is faster). The one-channel times include the whole call (input checks, output
-array), as a fit pays them.
+1: the library is faster). The one-channel times include the whole call (input checks, the copy
+of the input, the output array), as a fit pays them. ``--cpu`` times with the process's CPU clock
+instead of the wall clock: on a shared, loaded machine it leaves out the time the process waits
+for a core (the calls of the Leuven row take 6 ms, long enough to be preempted).
 
-Measured with ``python benches/peers.py`` on the project's machine (2 cores, AMD EPYC, a shared
-VM; load average 2.1 during the run), one-channel rows:
+Measured on the project's machine (2 cores, AMD EPYC, a shared VM, loaded by other work), the
+tree before this version and this one alternating, three runs of each; one-channel rows, the
+range of the runs' medians (21 calls each):
 
-| model, scheme | leuven-rt [ns/step] | numba [ns/step] | numba / leuven-rt |
-|---|---:|---:|---:|
-| LuGre, implicit, velocity | 6.57 | 6.44 | 0.98x |
-| LuGre, implicit, position | 7.97 | 7.92 | 0.99x |
-| Leuven N = 10, n = 2, implicit, position, level | 63.31 | 56.33 | 0.89x |
+| one channel, implicit | clock (load average) | before | now | numba | numba / leuven-rt |
+|---|---|---:|---:|---:|---:|
+| LuGre, velocity | CPU (10.8–11.0) | 6.37–6.68 | 5.63–5.79 | 6.21–6.58 | 0.96–0.97x → 1.13–1.14x |
+| LuGre, position | CPU (10.8–11.0) | 7.65–8.07 | 6.77–6.87 | 7.58–7.97 | 0.98–1.01x → 1.14–1.16x |
+| Leuven N = 10, n = 2, level | CPU (10.8–11.0) | 62.8–64.2 | 57.9–59.8 | 54.1–56.7 | 0.88x → 0.93–0.94x |
+| LuGre, velocity | wall (10.7–10.9) | 6.32–6.81 | 5.39–5.65 | 6.13–6.44 | 0.95–0.98x → 1.14x |
+| LuGre, position | wall (10.7–10.9) | 7.76–8.24 | 6.63–6.83 | 7.61–8.04 | 0.98–1.00x → 1.15–1.16x |
 
-LuGre is level with numba, not ahead of it (the closed form of its implicit step and the
-factors computed ahead are in docs/realtime.md and the changelog). What is left is mostly
-arithmetic the library does not share with numba: gms-core is ``no_std`` and takes ``exp`` and
-``sincos`` from libm (FreeBSD's algorithms, which gms-batch's lanes reproduce bit for bit), numba
-calls the C library's faster ones. The level alone costs the library about 12 ns a step
-(measured apart: the same Leuven call without it took 51 ns a step).
+ns per step; Leuven by position with the level ``LEVEL``. On the wall clock the Leuven row ranged
+from 94 to 145 ns a step on both sides at that load: not a measurement. LuGre is now faster than
+numba; the Leuven row is not yet. Measured apart (the same call without the level, CPU clock,
+median of 21): the level costs the library 9.8 ns a step (11.1 before) and numba 10.0–11.0; the
+Leuven step without it takes 49.0 ns against numba's 44.7, which is what is left. What changed:
+the level's terms of 64 positions are evaluated ahead of stepping them, lane by lane and without a
+branch (the phase reduced exactly to a quarter period, where libm's ``sincos`` polynomials apply
+directly), so that they run in SIMD registers; the step divides by dt and Vs no more (1/dt once
+per call, 1/Vs when the curve is built); and the output is written into a new array of the
+caller's instead of one allocated and zeroed in Rust. gms-core is ``no_std`` and takes ``exp`` and
+``sincos`` from libm (FreeBSD's algorithms, which gms-batch's lanes reproduce bit for bit),
+compiled for the baseline x86-64; numba calls the C library's, compiled for this CPU with FMA.
 """
 
 from __future__ import annotations
@@ -396,13 +407,15 @@ def inputs(channels: int, samples: int) -> np.ndarray:
     return np.ascontiguousarray(amplitude * np.sin(2.0 * np.pi * frequency * t + phase))
 
 
-def seconds(run: Callable[[], object]) -> float:
-    start = time.perf_counter()
+def seconds(run: Callable[[], object], clock: Callable[[], float]) -> float:
+    start = clock()
     run()
-    return time.perf_counter() - start
+    return clock() - start
 
 
-def measure(case: Case, signal: np.ndarray, repeats: int, failures: list[str]) -> str:
+def measure(
+    case: Case, signal: np.ndarray, repeats: int, failures: list[str], clock: Callable[[], float]
+) -> str:
     """The row of ``case`` on ``signal``: both sides checked against each other, then timed
     alternately."""
     expected = case.library(signal)
@@ -418,8 +431,8 @@ def measure(case: Case, signal: np.ndarray, repeats: int, failures: list[str]) -
     # elsewhere on the machine falls on both sides alike.
     library_times, peer_times = [], []
     for _ in range(repeats):
-        library_times.append(seconds(library_run))
-        peer_times.append(seconds(peer_run))
+        library_times.append(seconds(library_run, clock))
+        peer_times.append(seconds(peer_run, clock))
     library = float(np.median(library_times)) / signal.size * 1e9
     peer = float(np.median(peer_times)) / signal.size * 1e9
     return f"| {case.name} | {library:.2f} | {peer:.2f} | {peer / library:.2f}x | {agreement:.0e} |"
@@ -428,7 +441,14 @@ def measure(case: Case, signal: np.ndarray, repeats: int, failures: list[str]) -
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small batch and 3 repeats (a smoke run)")
+    parser.add_argument(
+        "--cpu",
+        action="store_true",
+        help="time with the process's CPU clock instead of the wall clock: on a shared, loaded "
+        "machine it leaves out the time the process waits for a core",
+    )
     args = parser.parse_args()
+    clock = time.process_time if args.cpu else time.perf_counter
     # --quick: 35 channels, so that three run outside the batch kernel's groups of eight.
     channels, samples, repeats = (35, 2_000, 3) if args.quick else (256, 10_000, 7)
     # One channel: short calls, so more of them.
@@ -442,7 +462,7 @@ def main() -> None:
     print()
     print(
         f"numba {numba.__version__}, Python {platform.python_version()}, {platform.machine()}; "
-        f"load average {load} at the start"
+        f"load average {load} at the start; {'CPU' if args.cpu else 'wall'} clock"
     )
     print()
     print(
@@ -454,7 +474,7 @@ def main() -> None:
     print("|---|---:|---:|---:|---:|")
     failures: list[str] = []
     for case in CASES:
-        print(measure(case, v, repeats, failures))
+        print(measure(case, v, repeats, failures, clock))
     print()
     print(
         f"## One channel: T = {channel_samples:,} samples at 1 kHz, the whole call; median of "
@@ -466,7 +486,7 @@ def main() -> None:
     velocity = inputs(1, channel_samples)[0]
     position = np.cumsum(velocity) * DT
     for case, by_position in CHANNEL_CASES:
-        print(measure(case, position if by_position else velocity, channel_repeats, failures))
+        print(measure(case, position if by_position else velocity, channel_repeats, failures, clock))
     load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
     print()
     print(f"load average {load} at the end")

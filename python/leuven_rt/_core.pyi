@@ -217,14 +217,17 @@ class Engine:
     def _step_channels(
         self, input: NDArray[np.float64], dt: float, position: bool
     ) -> NDArray[np.float64]: ...
-    def _run(self, input: NDArray[np.float64], dt: float, position: bool) -> NDArray[np.float64]: ...
+    def _run(
+        self, input: NDArray[np.float64], dt: float, position: bool, out: NDArray[np.float64]
+    ) -> None: ...
     def _run_position_level(
         self,
         input: NDArray[np.float64],
         dt: float,
         level: _SeriesLike | CoreLevel | None,
         position_force: _SeriesLike | CorePositionForce | None,
-    ) -> NDArray[np.float64]: ...
+        out: NDArray[np.float64],
+    ) -> None: ...
     def _run_level(
         self,
         v: NDArray[np.float64],
@@ -232,7 +235,8 @@ class Engine:
         dt: float,
         level: _SeriesLike | CoreLevel | None,
         position_force: _SeriesLike | CorePositionForce | None,
-    ) -> NDArray[np.float64]: ...
+        out: NDArray[np.float64],
+    ) -> None: ...
     def _run_position_deflection(
         self, x: NDArray[np.float64], dt: float
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...

@@ -136,7 +136,8 @@ class LeuvenModel(_core.Engine):
 
     def _run_signal(self, signal: ArrayLike, name: str, dt: float) -> FloatArray:
         array, one_dimensional = as_channel_signal(signal, name, self.channels)
-        out = self._run(array, as_step(dt), name == "x")
+        out = np.empty_like(array)
+        self._run(array, as_step(dt), name == "x", out)
         return out[0] if one_dimensional else out
 
     @property

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _core
@@ -58,8 +59,10 @@ def simulate(
                 field="x",
             )
         engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
-        # gms-core scans the signal (naming channel and sample of a non-finite value) and checks dt.
-        out = engine._run(array, step, False)
+        # gms-core scans the signal (naming channel and sample of a non-finite value) and checks
+        # dt; it writes every force into `out`, which is therefore not zeroed first.
+        out = np.empty_like(array)
+        engine._run(array, step, False, out)
         return out[0] if one_dimensional else out
     if level is None and position_force is None:
         raise InputError(
@@ -81,7 +84,8 @@ def simulate(
         )
     validated_level, validated_force = _terms(level, position_force)
     engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
-    out = engine._run_level(array, positions, step, validated_level, validated_force)
+    out = np.empty_like(array)
+    engine._run_level(array, positions, step, validated_level, validated_force, out)
     return out[0] if one_dimensional else out
 
 
@@ -105,8 +109,9 @@ def simulate_position(
     array, one_dimensional = as_signal(x, "x")
     step = as_step(dt)
     engine = _core.Engine(validated, array.shape[0], check_scheme(scheme))
+    out = np.empty_like(array)
     if level is None and position_force is None:
-        out = engine._run(array, step, True)
+        engine._run(array, step, True, out)
     else:
-        out = engine._run_position_level(array, step, *_terms(level, position_force))
+        engine._run_position_level(array, step, *_terms(level, position_force), out)
     return out[0] if one_dimensional else out

@@ -52,8 +52,9 @@ def test_params_are_validated_once_and_engines_take_the_validated_set() -> None:
         assert engine.elements == MAXWELL.elements
     # The engine runs the same model from the validated set as from the Params it came from.
     v = np.sin(np.linspace(0.0, 6.0, 300))[None, :] * 1e-3
-    from_set = _core.Engine(validated, 1, "implicit")._run(v, DT, False)
-    from_params = _core.Engine(MAXWELL, 1, "implicit")._run(v, DT, False)
+    from_set, from_params = np.empty_like(v), np.empty_like(v)
+    _core.Engine(validated, 1, "implicit")._run(v, DT, False, from_set)
+    _core.Engine(MAXWELL, 1, "implicit")._run(v, DT, False, from_params)
     np.testing.assert_array_equal(from_set, from_params)
 
 

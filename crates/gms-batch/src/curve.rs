@@ -13,7 +13,8 @@ pub(crate) struct Curve {
     fs: f64,
     fc_neg: f64,
     fs_neg: f64,
-    vs: f64,
+    /// 1/Vs, as gms-core computes it.
+    inverse_vs: f64,
     delta: Power,
     negligible: f64,
     negligible_neg: f64,
@@ -26,7 +27,7 @@ impl Curve {
             fs: stribeck.fs(),
             fc_neg: stribeck.fc_neg(),
             fs_neg: stribeck.fs_neg(),
-            vs: stribeck.vs(),
+            inverse_vs: 1.0 / stribeck.vs(),
             delta: stribeck.delta_power(),
             negligible: stribeck.negligible_above(1.0),
             negligible_neg: stribeck.negligible_above(-1.0),
@@ -36,7 +37,7 @@ impl Curve {
     /// g(v) of every lane.
     #[inline(always)]
     pub(crate) fn g<const L: usize>(&self, v: &[f64; L]) -> [f64; L] {
-        let ratio: [f64; L] = lanes(|l| v[l] / self.vs);
+        let ratio: [f64; L] = lanes(|l| v[l] * self.inverse_vs);
         // The usual shapes as their own loops, which vectorize; the class is the same for
         // every lane.
         let exponent: [f64; L] = match self.delta {

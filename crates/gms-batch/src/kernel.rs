@@ -89,6 +89,7 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
         return Err(Rejected);
     }
     let (curve, sigma1) = (Curve::new(params.stribeck()), params.sigma1());
+    let inverse_dt = 1.0 / dt;
     let linear = exponent.closed_form();
     let position = matches!(signal, Signal::Position { .. });
     let mut memory = kernel.gather::<L>(states);
@@ -207,7 +208,9 @@ fn run_with<H: BatchHysteresis, E: Exponent, const L: usize>(
                 }
             };
             let force: [f64; L] = lanes(|l| {
-                hysteresis[l] + sigma1 * (z_next[l] - z[l]) / dt + params.sigma2_at(v[l]) * v[l]
+                hysteresis[l]
+                    + sigma1 * (z_next[l] - z[l]) * inverse_dt
+                    + params.sigma2_at(v[l]) * v[l]
             });
             if !all_finite(&force) {
                 return Err(Rejected);

@@ -32,19 +32,29 @@
 //! **Bounded work.** One `sin` and one `cos` per ripple; the harmonics follow by the
 //! angle-addition recurrence (a rotation by the first harmonic's angle per harmonic), so an
 //! evaluation costs at most [`MAX_RIPPLES`] sincos pairs and [`MAX_RIPPLES`]·[`MAX_HARMONICS`]
-//! rotations.
+//! rotations. The evaluation has no branch: the block calls evaluate the terms of a stretch of
+//! positions at once (64, ahead of stepping them), which the compiler runs in SIMD registers,
+//! with the same arithmetic, bit for bit, as one position at a time.
 //!
-//! **Accuracy.** The phase is x/P reduced to the nearest whole period before the sincos, so
-//! the angle stays in [−π, π] whatever |x|. The reduction is exact; what remains is the
-//! rounding of the quotient x/P itself, about |x/P|·1.1e-16 cycles, which any formula in f64
-//! has (it is the resolution of x relative to the period). Each rotation of the recurrence adds
-//! a few ulps to the harmonic: after [`MAX_HARMONICS`] harmonics the cos and sin are within
-//! 1e-15 of libm's `cos(k·θ)`, `sin(k·θ)` at the same θ (tests/level.rs checks 4e-15 on the
-//! whole factor up to |x/P| = 1e12). The numpy formula of `leuven_rt.reference` does not reduce
-//! the phase: its `k·2π·x/P` rounds by up to about 3·k·2π·|x/P|·1.1e-16 rad, so the two agree
-//! to 1e-12 (relative to the sum of the amplitudes) while that stays below 1e-12 (|x/P| up to
-//! about 20 with the eighth harmonic at full amplitude; the tests compare them there, and Rust
-//! with the reduced formula beyond).
+//! **Accuracy.** The phase is x/P reduced in cycles, exactly: whole periods, then whole quarter
+//! periods are removed, which leaves an angle of at most π/4 (the quarter turns are exact swaps
+//! and sign changes). There libm's `sincos` evaluates its two polynomials without a reduction
+//! of its own, and this module evaluates the same polynomials (`sincos_small`, equal to libm's
+//! bit for bit, tested); what remains is the rounding of the angle, half an ulp, and of the
+//! quotient x/P itself, about |x/P|·1.1e-16 cycles, which any formula in f64 has (it is the
+//! resolution of x relative to the period). Each rotation of the recurrence adds a few ulps to
+//! the harmonic: after [`MAX_HARMONICS`] harmonics the cos and sin are within 1e-15 of libm's
+//! `cos(k·θ)`, `sin(k·θ)` at the same θ (tests/level.rs checks 4e-15 on the whole factor up to
+//! |x/P| = 1e12). The trend's p is (x − middle) times 1/`half_stroke`, computed once. The numpy
+//! formula of `leuven_rt.reference` does not reduce the phase: its `k·2π·x/P` rounds by up to
+//! about 3·k·2π·|x/P|·1.1e-16 rad, so the two agree to 1e-12 (relative to the sum of the
+//! amplitudes) while that stays below 1e-12 (|x/P| up to about 20 with the eighth harmonic at
+//! full amplitude; the tests compare them there, and Rust with the reduced formula beyond).
+
+// The evaluation's parts are `#[inline(always)]`: inlined into the block calls' loop over a
+// chunk of positions, their lane loops are vectorized together; left out of line, each would
+// be a call per position.
+#![allow(clippy::inline_always)]
 
 use crate::checks::positive;
 use crate::error::{Error, Field};
@@ -57,6 +67,9 @@ pub const MAX_HARMONICS: usize = 8;
 
 /// 2^52: every f64 of at least this magnitude is a whole number.
 const WHOLE: f64 = 4_503_599_627_370_496.0;
+
+/// 1.5·2^52: adding and subtracting it rounds an |x| ≤ 2^51 to the nearest whole number.
+const ROUNDING: f64 = 6_755_399_441_055_744.0;
 
 /// 2^20: the ulps of the extent a period or a half stroke must span (see the module documentation).
 const RESOLUTION_ULPS: f64 = 1_048_576.0;
@@ -101,31 +114,108 @@ impl Ripple {
         sin: [0.0; MAX_HARMONICS],
     };
 
-    /// The sum over the harmonics k of `c_k·cos(kθ) + s_k·sin(kθ)` at θ = 2π·x/period.
-    #[inline]
-    fn value(&self, x: f64) -> f64 {
-        let cycles = x / self.period;
-        // Whole periods add nothing; removing them keeps the angle small (see the module
-        // documentation). From 2^52 on every f64 is a whole number, and x/P may even overflow
-        // for a finite x: the phase is 0 there (a NaN x has been handled by the caller).
-        let fraction = if libm::fabs(cycles) >= WHOLE {
-            0.0
-        } else {
-            cycles - libm::round(cycles)
-        };
-        let angle = core::f64::consts::TAU * fraction;
-        let (sin1, cos1) = libm::sincos(angle);
-        let (mut sin_k, mut cos_k) = (sin1, cos1);
-        let mut sum = 0.0;
-        for k in 0..self.harmonics {
-            sum += self.cos[k] * cos_k + self.sin[k] * sin_k;
-            // Angle addition: (k + 1)θ = kθ + θ.
-            let next_cos = cos_k * cos1 - sin_k * sin1;
-            sin_k = sin_k * cos1 + cos_k * sin1;
-            cos_k = next_cos;
+    /// Adds to each `sums[i]` the sum over the harmonics k of `c_k·cos(kθ) + s_k·sin(kθ)` at
+    /// θ = 2π·`x[i]`/period (each harmonic summed from 0 first). Lane by lane: every loop is
+    /// over the L positions, without branches, so that the compiler runs them in SIMD
+    /// registers; L = 1 is the same arithmetic for one position.
+    #[inline(always)]
+    fn add_to<const L: usize>(&self, x: &[f64; L], sums: &mut [f64; L]) {
+        let mut sin1 = [0.0; L];
+        let mut cos1 = [0.0; L];
+        for i in 0..L {
+            (sin1[i], cos1[i]) = sincos_cycles(x[i] / self.period);
         }
-        sum
+        let (mut sin_k, mut cos_k) = (sin1, cos1);
+        let mut sum = [0.0; L];
+        for (&c, &s) in self.cos.iter().zip(&self.sin).take(self.harmonics) {
+            for i in 0..L {
+                sum[i] += c * cos_k[i] + s * sin_k[i];
+                // Angle addition: (k + 1)θ = kθ + θ.
+                let next_cos = cos_k[i] * cos1[i] - sin_k[i] * sin1[i];
+                sin_k[i] = sin_k[i] * cos1[i] + cos_k[i] * sin1[i];
+                cos_k[i] = next_cos;
+            }
+        }
+        for i in 0..L {
+            sums[i] += sum[i];
+        }
     }
+}
+
+/// `a` if `condition`, else `b`: a select, not a branch.
+#[inline(always)]
+fn select(condition: bool, a: f64, b: f64) -> f64 {
+    if condition {
+        a
+    } else {
+        b
+    }
+}
+
+/// (sin 2πc, cos 2πc) for a phase of c cycles.
+///
+/// The phase is reduced in cycles, where the reduction is exact: whole periods are removed
+/// (from 2^52 on every f64 is a whole number, and x/P may even overflow for a finite x: the
+/// phase is 0 there), then whole quarter periods, which leaves at most an eighth of a period:
+/// an angle of at most π/4, where libm's `sincos` evaluates its two polynomials directly
+/// ([`sincos_small`]). The quarter turns are then swaps and sign changes, exact too. What
+/// remains is the rounding of the angle, (π/2)·(the remaining quarters), half an ulp. No
+/// branch: a NaN phase gives NaN.
+#[inline(always)]
+fn sincos_cycles(cycles: f64) -> (f64, f64) {
+    let cycles = select(libm::fabs(cycles) >= WHOLE, 0.0, cycles);
+    // Nearest whole numbers by adding and subtracting 2^52 (|cycles| < 2^52) or 1.5·2^52
+    // (|quarters| ≤ 2): exact.
+    let whole = libm::copysign(WHOLE, cycles);
+    let fraction = cycles - ((cycles + whole) - whole);
+    let quarters = 4.0 * fraction;
+    let turns = (quarters + ROUNDING) - ROUNDING;
+    let (sin, cos) = sincos_small(core::f64::consts::FRAC_PI_2 * (quarters - turns));
+    // turns ∈ {−2, …, 2}; a quarter turn maps (sin, cos) to (cos, −sin), a half turn to
+    // (−sin, −cos). Odd: ±1 quarter; a half turn in it: −2, −1 (three quarters) or 2.
+    let odd = libm::fabs(turns) == 1.0;
+    let half = !(-0.5..=1.5).contains(&turns);
+    let (sin, cos) = (select(odd, cos, sin), select(odd, -sin, cos));
+    (select(half, -sin, sin), select(half, -cos, cos))
+}
+
+// The polynomials of libm's `k_sin` and `k_cos` (FreeBSD's k_sin.c, k_cos.c), as it writes them.
+#[allow(clippy::excessive_precision, clippy::unreadable_literal)]
+const S: [f64; 6] = [
+    -1.66666666666666324348e-01,
+    8.33333333332248946124e-03,
+    -1.98412698298579493134e-04,
+    2.75573137070700676789e-06,
+    -2.50507602534068634195e-08,
+    1.58969099521155010221e-10,
+];
+#[allow(clippy::excessive_precision, clippy::unreadable_literal)]
+const C: [f64; 6] = [
+    4.16666666666666019037e-02,
+    -1.38888888888741095749e-03,
+    2.48015872894767294178e-05,
+    -2.75573143513906633035e-07,
+    2.08757232129817482790e-09,
+    -1.13596475577881948265e-11,
+];
+
+/// `libm::sincos(x)` for |x| ≤ π/4, bit for bit: there it evaluates `k_sin(x, 0, 0)` and
+/// `k_cos(x, 0)` (below 2^-27·√2 it returns (x, 1), which the polynomials round to as well),
+/// here without its branches on the size of x, so that lanes of positions run it in SIMD.
+#[inline(always)]
+fn sincos_small(x: f64) -> (f64, f64) {
+    let z = x * x;
+    let w = z * z;
+    let r = S[1] + z * (S[2] + z * S[3]) + z * w * (S[4] + z * S[5]);
+    let v = z * x;
+    let sin = x + v * (S[0] + z * r);
+    let r = z * (C[0] + z * (C[1] + z * C[2])) + w * w * (C[3] + z * (C[4] + z * C[5]));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    // libm's tail, x·y with y = 0, kept for the sign of a zero.
+    let tail = 0.0;
+    let cos = w + (((1.0 - w) - hz) + (z * r - x * tail));
+    (sin, cos)
 }
 
 /// r(x) of the module documentation, validated: `Copy`, fixed size, no allocation. The shape
@@ -134,6 +224,8 @@ impl Ripple {
 pub struct PositionSeries {
     middle: f64,
     half_stroke: f64,
+    /// 1/`half_stroke`, so that an evaluation multiplies instead of dividing.
+    inverse_half_stroke: f64,
     trend: [f64; 2],
     ripple_count: usize,
     ripples: [Ripple; MAX_RIPPLES],
@@ -151,6 +243,7 @@ impl PositionSeries {
         Self {
             middle: 0.0,
             half_stroke: 1.0,
+            inverse_half_stroke: 1.0,
             trend: [0.0; 2],
             ripple_count: 0,
             ripples: [Ripple::EMPTY; MAX_RIPPLES],
@@ -226,6 +319,7 @@ impl PositionSeries {
         let mut series = Self {
             middle,
             half_stroke,
+            inverse_half_stroke: 1.0 / half_stroke,
             trend,
             ripple_count: ripples.len(),
             ripples: [Ripple::EMPTY; MAX_RIPPLES],
@@ -253,24 +347,28 @@ impl PositionSeries {
     /// `base` + r(x), summed from `base` (so that the level's 1 + r(x) rounds as one sum).
     #[inline]
     fn value_from(&self, base: f64, x: f64) -> f64 {
-        if !x.is_finite() {
-            return f64::NAN;
+        let mut out = [0.0];
+        self.values_from(base, &[x], &mut out);
+        out[0]
+    }
+
+    /// `base` + r(x) of each of L positions into `out`, NaN for a non-finite x. Lane by lane
+    /// (see `Ripple::add_to`): the block calls evaluate a stretch of positions at once, and
+    /// L = 1, the evaluation of one position, is the same arithmetic, so both agree bit for bit.
+    #[inline(always)]
+    pub(crate) fn values_from<const L: usize>(&self, base: f64, x: &[f64; L], out: &mut [f64; L]) {
+        for (out, &x) in out.iter_mut().zip(x) {
+            let scaled = (x - self.middle) * self.inverse_half_stroke;
+            // Spelled out, as everywhere in a step (CONTRIBUTING.md#rules: no f64::clamp).
+            let p = select(scaled > 1.0, 1.0, select(scaled < -1.0, -1.0, scaled));
+            *out = base + self.trend[0] * p + self.trend[1] * (1.5 * p * p - 0.5);
         }
-        let scaled = (x - self.middle) / self.half_stroke;
-        // Spelled out, as everywhere in a step (CONTRIBUTING.md#rules: no f64::clamp).
-        #[allow(clippy::manual_clamp)]
-        let p = if scaled > 1.0 {
-            1.0
-        } else if scaled < -1.0 {
-            -1.0
-        } else {
-            scaled
-        };
-        let mut sum = base + self.trend[0] * p + self.trend[1] * (1.5 * p * p - 0.5);
-        for ripple in &self.ripples[..self.ripple_count] {
-            sum += ripple.value(x);
+        for ripple in self.ripples.iter().take(self.ripple_count) {
+            ripple.add_to(x, out);
         }
-        sum
+        for (out, &x) in out.iter_mut().zip(x) {
+            *out = select(x.is_finite(), *out, f64::NAN);
+        }
     }
 
     /// Whether r ≡ 0: no trend and no ripple.
@@ -367,17 +465,30 @@ impl Level {
         self.series.value_from(1.0, x)
     }
 
+    /// factor(x) of each of L positions, bit for bit [`Level::factor`].
+    #[inline]
+    pub(crate) fn factors<const L: usize>(&self, x: &[f64; L], out: &mut [f64; L]) {
+        self.series.values_from(1.0, x, out);
+    }
+
     /// The force with this level from the plain model's force `force` at position `x` and
     /// velocity `v`, with `sigma2` the viscous coefficient that applies to v
     /// ([`Params::sigma2_at`](crate::Params::sigma2_at)): factor(x)·(force − σ2·v) + σ2·v. The
     /// flat level returns `force` itself, bit for bit.
     #[inline]
     pub fn apply(&self, force: f64, x: f64, v: f64, sigma2: f64) -> f64 {
+        self.apply_factor(self.factor(x), force, v, sigma2)
+    }
+
+    /// [`Level::apply`] with factor(x) evaluated already (`factor`): the block calls evaluate
+    /// the factors of a stretch of positions ahead of stepping them.
+    #[inline]
+    pub(crate) fn apply_factor(&self, factor: f64, force: f64, v: f64, sigma2: f64) -> f64 {
         if self.is_flat() {
             return force;
         }
         let viscous = sigma2 * v;
-        self.factor(x) * (force - viscous) + viscous
+        factor * (force - viscous) + viscous
     }
 
     /// Whether factor ≡ 1: no trend and no ripple ([`Level::none`], or a level given as zeros
@@ -455,14 +566,26 @@ impl PositionForce {
         self.series.value(x)
     }
 
+    /// r(x) of each of L positions, bit for bit [`PositionForce::force`].
+    #[inline]
+    pub(crate) fn forces<const L: usize>(&self, x: &[f64; L], out: &mut [f64; L]) {
+        self.series.values_from(0.0, x, out);
+    }
+
     /// `force` + r(x): the output with this position force added. No position force returns
     /// `force` itself, bit for bit.
     #[inline]
     pub fn apply(&self, force: f64, x: f64) -> f64 {
+        self.apply_force(self.force(x), force)
+    }
+
+    /// [`PositionForce::apply`] with r(x) evaluated already (`added`).
+    #[inline]
+    pub(crate) fn apply_force(&self, added: f64, force: f64) -> f64 {
         if self.is_none() {
             return force;
         }
-        force + self.force(x)
+        force + added
     }
 
     /// Whether r ≡ 0: no trend and no ripple.
@@ -523,6 +646,83 @@ fn checked_ripple(ripple: usize, terms: &RippleTerms<'_>) -> Result<Ripple, Erro
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The branch-free polynomials are libm's `sincos` on |x| ≤ π/4, to the bit: tiny
+        /// angles (where libm returns (x, 1) without them) included.
+        #[test]
+        fn small_angles_are_libm_sincos(
+            t in -1.0..=1.0f64,
+            scale in prop_oneof![Just(1.0), Just(1e-3), Just(1e-9), Just(1e-300)],
+        ) {
+            let x = core::f64::consts::FRAC_PI_4 * t * scale;
+            let (sin, cos) = sincos_small(x);
+            let (expected_sin, expected_cos) = libm::sincos(x);
+            prop_assert_eq!(sin.to_bits(), expected_sin.to_bits(), "sin({:e})", x);
+            prop_assert_eq!(cos.to_bits(), expected_cos.to_bits(), "cos({:e})", x);
+        }
+
+        /// The reduction in quarter periods gives sin and cos of 2πc to an ulp of 1 (the
+        /// rounding of the angle), whole periods of the phase removed exactly.
+        #[test]
+        fn phases_in_cycles(c in -1e6..1e6f64) {
+            let (sin, cos) = sincos_cycles(c);
+            let angle = core::f64::consts::TAU * (c - libm::round(c));
+            prop_assert!(libm::fabs(sin - libm::sin(angle)) <= 4.0 * f64::EPSILON, "{:e}", c);
+            prop_assert!(libm::fabs(cos - libm::cos(angle)) <= 4.0 * f64::EPSILON, "{:e}", c);
+        }
+    }
+
+    #[test]
+    fn quarter_periods_are_exact() {
+        for (c, sin, cos) in [
+            (0.0, 0.0, 1.0),
+            (0.25, 1.0, 0.0),
+            (0.5, 0.0, -1.0),
+            (-0.5, 0.0, -1.0),
+            (0.75, -1.0, 0.0),
+            (-0.25, -1.0, 0.0),
+            (1.0, 0.0, 1.0),
+            (-7.75, 1.0, 0.0),
+            (4_503_599_627_370_496.0, 0.0, 1.0),
+            (f64::INFINITY, 0.0, 1.0),
+        ] {
+            let (s, k) = sincos_cycles(c);
+            assert_eq!((s, k), (sin, cos), "phase {c}");
+        }
+        assert!(sincos_cycles(f64::NAN).0.is_nan());
+    }
+
+    #[test]
+    fn lanes_are_the_single_evaluation() {
+        let level = Level::new(
+            0.001,
+            0.02,
+            [0.1, -0.05],
+            &[
+                RippleTerms {
+                    period: 0.003,
+                    cos: &[0.1, 0.02, -0.01],
+                    sin: &[0.05, 0.0, 0.01],
+                },
+                RippleTerms {
+                    period: 7e-4,
+                    cos: &[0.02],
+                    sin: &[-0.03],
+                },
+            ],
+        )
+        .unwrap();
+        let mut x: [f64; 8] = core::array::from_fn(|i| -0.05 + 0.0137 * i as f64);
+        x[3] = f64::NAN;
+        x[5] = 1e300;
+        let mut factors = [0.0; 8];
+        level.factors(&x, &mut factors);
+        for (&x, &factor) in x.iter().zip(&factors) {
+            assert_eq!(factor.to_bits(), level.factor(x).to_bits(), "x = {x}");
+        }
+    }
 
     #[test]
     fn none_is_one_everywhere() {

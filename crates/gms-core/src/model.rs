@@ -36,9 +36,11 @@ macro_rules! per_scheme {
     };
 }
 
-/// Samples of LuGre's implicit block calls whose factor g/(g + dt·|v|·k) is computed ahead of
-/// stepping them ([`run_ahead`]), in a buffer on the stack (512 bytes; 1 KiB with position
-/// input, whose velocities are kept too).
+/// Samples of a block call whose values that depend on the input alone are computed ahead of
+/// stepping them ([`run_ahead`]), in a buffer on the stack: LuGre's implicit factor
+/// g/(g + dt·|v|·k) (512 bytes; 1 KiB with position input, whose velocities are kept too), and
+/// the level's factor and the position force at the positions (1 KiB, and 4 KiB more while
+/// they are evaluated lane by lane).
 const AHEAD: usize = 64;
 
 /// How the state equation is advanced over one step.
@@ -206,8 +208,9 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
+        let inverse_dt = 1.0 / dt;
         finite(v, Field::v)?;
-        self.advance(state, v, dt, scheme)
+        self.advance(state, v, dt, inverse_dt, scheme)
     }
 
     /// One step with position input `x`: v = (x − `x_prev`)/dt, and v = 0 on a fresh channel.
@@ -219,8 +222,9 @@ impl<H: Hysteresis> Params<H> {
         scheme: Scheme,
     ) -> Result<f64, Error> {
         check_dt(dt)?;
+        let inverse_dt = 1.0 / dt;
         finite(x, Field::x)?;
-        self.advance_position(state, x, dt, scheme)
+        self.advance_position(state, x, dt, inverse_dt, scheme)
     }
 
     /// Runs `v` through one channel, writing the forces into `out` (same length).
@@ -236,11 +240,14 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(v, Field::v, dt, out)?;
+        let inverse_dt = 1.0 / dt;
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear(state, v, dt, stiffness, out, |force, _| Ok(force));
         }
         per_scheme!(scheme, |scheme| {
-            run_block(state, v, out, |state, v| self.advance(state, v, dt, scheme))
+            run_block(state, v, out, |state, v| {
+                self.advance(state, v, dt, inverse_dt, scheme)
+            })
         })
     }
 
@@ -255,12 +262,13 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
+        let inverse_dt = 1.0 / dt;
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear_position(state, x, dt, stiffness, out, |force, _, _| Ok(force));
         }
         per_scheme!(scheme, |scheme| {
             run_block(state, x, out, |state, x| {
-                self.advance_position(state, x, dt, scheme)
+                self.advance_position(state, x, dt, inverse_dt, scheme)
             })
         })
     }
@@ -284,19 +292,27 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
+        let inverse_dt = 1.0 / dt;
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear_position(state, x, dt, stiffness, out, |force, x, v| {
                 self.at_position(force, x, v, level, position_force)
             });
         }
+        // The terms depend on the position alone: a chunk's are evaluated ahead of stepping it.
         per_scheme!(scheme, |scheme| {
-            run_block(state, x, out, |state, x| {
-                let v = position_velocity(state, x, dt)?;
-                let force = self.advance(state, v, dt, scheme)?;
-                state.last_position = Some(x);
-                // run_block puts the state back on this error, like on any other.
-                self.at_position(force, x, v, level, position_force)
-            })
+            run_ahead(
+                state,
+                x,
+                out,
+                |_, x, terms| position_terms(level, position_force, x, terms),
+                |state, x, terms| {
+                    let v = position_velocity(state, x, dt)?;
+                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                    state.last_position = Some(x);
+                    // run_ahead puts the state back on this error, like on any other.
+                    self.with_terms(force, v, terms, level, position_force)
+                },
+            )
         })
     }
 
@@ -331,6 +347,7 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         check_block(v, Field::v, dt, out)?;
+        let inverse_dt = 1.0 / dt;
         all_finite(x, Field::x)?;
         if let Some(stiffness) = self.closed_form(scheme) {
             let mut positions = x.iter();
@@ -341,15 +358,38 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         per_scheme!(scheme, |scheme| {
-            let mut positions = x.iter();
-            run_block(state, v, out, |state, v| {
-                // The lengths are equal, so there is always a position; NaN would be refused
-                // below.
-                let x = positions.next().copied().unwrap_or(f64::NAN);
-                let force = self.advance(state, v, dt, scheme)?;
-                self.at_position(force, x, v, level, position_force)
-            })
+            // The chunks of x are those of v (the lengths are equal), their terms evaluated
+            // ahead of stepping them.
+            let mut positions = x.chunks(AHEAD);
+            run_ahead(
+                state,
+                v,
+                out,
+                |_, _, terms| {
+                    let x = positions.next().unwrap_or(&[]);
+                    position_terms(level, position_force, x, terms);
+                },
+                |state, v, terms| {
+                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                    self.with_terms(force, v, terms, level, position_force)
+                },
+            )
         })
+    }
+
+    /// [`Params::at_position`] with the terms at the step's position evaluated already
+    /// ([`position_terms`]): the level's factor and the position force.
+    #[inline(always)]
+    fn with_terms(
+        &self,
+        force: f64,
+        v: f64,
+        (factor, added): (f64, f64),
+        level: &Level,
+        position_force: &PositionForce,
+    ) -> Result<f64, Error> {
+        let force = level.apply_factor(factor, force, v, self.sigma2_at(v));
+        finite_force(position_force.apply_force(added, force))
     }
 
     /// The plain force `force` of a step at position `x` and velocity `v` with the level and
@@ -363,12 +403,7 @@ impl<H: Hysteresis> Params<H> {
         level: &Level,
         position_force: &PositionForce,
     ) -> Result<f64, Error> {
-        let force = position_force.apply(level.apply(force, x, v, self.sigma2_at(v)), x);
-        if force.is_finite() {
-            Ok(force)
-        } else {
-            Err(Error::Diverged { index: 0 })
-        }
+        finite_force(position_force.apply(level.apply(force, x, v, self.sigma2_at(v)), x))
     }
 
     /// [`Params::simulate_position`], also writing the deflection z after every sample into
@@ -386,6 +421,7 @@ impl<H: Hysteresis> Params<H> {
         z: &mut [f64],
     ) -> Result<(), Error> {
         check_block(x, Field::x, dt, out)?;
+        let inverse_dt = 1.0 / dt;
         if z.len() != x.len() {
             return Err(Error::LengthMismatch {
                 expected: x.len(),
@@ -394,7 +430,7 @@ impl<H: Hysteresis> Params<H> {
         }
         let mut deflections = z.iter_mut();
         run_block(state, x, out, |state, x| {
-            let force = self.advance_position(state, x, dt, scheme)?;
+            let force = self.advance_position(state, x, dt, inverse_dt, scheme)?;
             if let Some(slot) = deflections.next() {
                 *slot = state.z;
             }
@@ -451,6 +487,7 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
         mut then: impl FnMut(f64, f64) -> Result<f64, Error>,
     ) -> Result<(), Error> {
+        let inverse_dt = 1.0 / dt;
         run_ahead(
             state,
             v,
@@ -462,7 +499,7 @@ impl<H: Hysteresis> Params<H> {
             },
             |state, v, factor| {
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, dt, z_next)?;
+                let force = self.advance_to(state, v, inverse_dt, z_next)?;
                 then(force, v)
             },
         )
@@ -481,6 +518,7 @@ impl<H: Hysteresis> Params<H> {
         out: &mut [f64],
         mut then: impl FnMut(f64, f64, f64) -> Result<f64, Error>,
     ) -> Result<(), Error> {
+        let inverse_dt = 1.0 / dt;
         run_ahead(
             state,
             x,
@@ -497,7 +535,7 @@ impl<H: Hysteresis> Params<H> {
             |state, x, (v, factor)| {
                 let v = finite_velocity(v)?;
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, dt, z_next)?;
+                let force = self.advance_to(state, v, inverse_dt, z_next)?;
                 state.last_position = Some(x);
                 // run_ahead puts the state back on this error, like on any other.
                 then(force, x, v)
@@ -551,6 +589,7 @@ impl<H: Hysteresis> Params<H> {
         state: &mut State<H::Memory>,
         v: f64,
         dt: f64,
+        inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
         let z = state.z;
@@ -558,7 +597,7 @@ impl<H: Hysteresis> Params<H> {
             Scheme::Implicit => self.implicit_z(state, v, dt),
             Scheme::Explicit => z + dt * self.state_derivative(state, z, v),
         };
-        self.advance_to(state, v, dt, z_next)
+        self.advance_to(state, v, inverse_dt, z_next)
     }
 
     /// The step to the new deflection `z_next` (refused if not finite): the force and the
@@ -568,14 +607,14 @@ impl<H: Hysteresis> Params<H> {
         &self,
         state: &mut State<H::Memory>,
         v: f64,
-        dt: f64,
+        inverse_dt: f64,
         z_next: f64,
     ) -> Result<f64, Error> {
         let z = state.z;
         if !z_next.is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
-        let micro_viscous = self.sigma1 * (z_next - z) / dt;
+        let micro_viscous = self.sigma1 * (z_next - z) * inverse_dt;
         let viscous = self.sigma2_at(v) * v;
         let bound =
             self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
@@ -615,10 +654,11 @@ impl<H: Hysteresis> Params<H> {
         state: &mut State<H::Memory>,
         x: f64,
         dt: f64,
+        inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
         let v = position_velocity(state, x, dt)?;
-        let force = self.advance(state, v, dt, scheme)?;
+        let force = self.advance(state, v, dt, inverse_dt, scheme)?;
         state.last_position = Some(x);
         Ok(force)
     }
@@ -650,6 +690,42 @@ fn finite_velocity(v: f64) -> Result<f64, Error> {
             index: 0,
             value: v,
         })
+    }
+}
+
+/// The level's factor and the position force at each of the positions `x` (at most [`AHEAD`])
+/// into `terms`: a whole chunk at a time (a short one padded with zeros), lane by lane, the
+/// same arithmetic as [`Level::factor`] and [`PositionForce::force`] at one position.
+#[inline(always)]
+fn position_terms(
+    level: &Level,
+    position_force: &PositionForce,
+    x: &[f64],
+    terms: &mut [(f64, f64); AHEAD],
+) {
+    let mut positions = [0.0; AHEAD];
+    for (position, &x) in positions.iter_mut().zip(x) {
+        *position = x;
+    }
+    let (mut factors, mut added) = ([1.0; AHEAD], [0.0; AHEAD]);
+    if !level.is_flat() {
+        level.factors(&positions, &mut factors);
+    }
+    if !position_force.is_none() {
+        position_force.forces(&positions, &mut added);
+    }
+    for (terms, (&factor, &added)) in terms.iter_mut().zip(factors.iter().zip(&added)) {
+        *terms = (factor, added);
+    }
+}
+
+/// `force`, or a divergence if the position terms made it non-finite.
+#[inline(always)]
+fn finite_force(force: f64) -> Result<f64, Error> {
+    if force.is_finite() {
+        Ok(force)
+    } else {
+        Err(Error::Diverged { index: 0 })
     }
 }
 

@@ -12,6 +12,8 @@ pub struct Stribeck {
     fc_neg: f64,
     fs_neg: f64,
     vs: f64,
+    /// 1/Vs (finite: Vs is normal), so that g multiplies instead of dividing.
+    inverse_vs: f64,
     /// δ, classified once: g is evaluated on every step, usually at an integer δ.
     delta: Power,
     /// Above these values of |v/Vs|^δ the Stribeck term is below half an ulp of Fc (resp.
@@ -62,6 +64,7 @@ impl Stribeck {
             fc_neg,
             fs_neg,
             vs,
+            inverse_vs: 1.0 / vs,
             delta: Power::new(delta),
             negligible: negligible_above(fc, fs),
             negligible_neg: negligible_above(fc_neg, fs_neg),
@@ -122,7 +125,7 @@ impl Stribeck {
         } else {
             (self.fc, self.fs, self.negligible)
         };
-        let exponent = self.delta.abs(v / self.vs);
+        let exponent = self.delta.abs(v * self.inverse_vs);
         if exponent > negligible {
             return fc;
         }
@@ -170,7 +173,8 @@ mod tests {
         for k in 0..4000 {
             let v = (f64::from(k) - 2000.0) * 2e-5;
             let (fc, fs) = if v < 0.0 { (0.3, 7.0) } else { (1.0, 1.5) };
-            let direct = fc + (fs - fc) * libm::exp(-libm::pow(libm::fabs(v / 1e-3), 1.7));
+            // g multiplies by 1/Vs, computed once.
+            let direct = fc + (fs - fc) * libm::exp(-libm::pow(libm::fabs(v * (1.0 / 1e-3)), 1.7));
             assert_eq!(curve.g(v), direct, "v = {v}");
         }
     }

@@ -2,7 +2,8 @@
 //! it, so that `step` reaches Rust without a Python frame in between.
 
 use numpy::{
-    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 
@@ -120,52 +121,52 @@ impl Engine {
         Ok(PyArray1::from_vec(slf.py(), out))
     }
 
-    /// Runs every channel over its row of `input`, shape (B, T), with the GIL released.
+    /// Runs every channel over its row of `input`, shape (B, T), with the GIL released, writing
+    /// the forces into `out` (the same shape: a new array of the caller's, so that no output is
+    /// allocated, zeroed and handed over here).
     fn _run<'py>(
         slf: &Bound<'py, Self>,
         input: PyReadonlyArray2<'py, f64>,
         dt: f64,
         position: bool,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        mut out: PyReadwriteArray2<'py, f64>,
+    ) -> PyResult<()> {
         let py = slf.py();
         let mut this = lend_mut(slf)?;
-        let shape = [input.shape()[0], input.shape()[1]];
-        same_channels(shape[0], this.bank.channels(), "input", "model")?;
-        let input = input.as_slice()?;
-        let mut out = zeros(input.len(), "input")?;
+        same_channels(input.shape()[0], this.bank.channels(), "input", "model")?;
+        let (input, out) = (input.as_slice()?, out.as_slice_mut()?);
         let bank = &mut this.bank;
-        py.detach(|| bank.run(input, dt, kind(position), &mut out))
-            .map_err(raise)?;
-        PyArray1::from_vec(py, out).reshape(shape)
+        py.detach(|| bank.run(input, dt, kind(position), out))
+            .map_err(raise)
     }
 
     /// Runs every channel over its row of positions `input`, shape (B, T), with the GIL
     /// released, with the position-dependent `level` and `position_force` (either may be None)
-    /// on the forces (docs/model.md#position-dependent-level).
+    /// on the forces (docs/model.md#position-dependent-level), writing them into `out` as
+    /// [`Engine::_run`] does.
     fn _run_position_level<'py>(
         slf: &Bound<'py, Self>,
         input: PyReadonlyArray2<'py, f64>,
         dt: f64,
         level: Option<&Bound<'py, PyAny>>,
         position_force: Option<&Bound<'py, PyAny>>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        mut out: PyReadwriteArray2<'py, f64>,
+    ) -> PyResult<()> {
         let py = slf.py();
         let level = optional_level(level)?;
         let force = optional_position_force(position_force)?;
         let mut this = lend_mut(slf)?;
-        let shape = [input.shape()[0], input.shape()[1]];
-        same_channels(shape[0], this.bank.channels(), "input", "model")?;
-        let input = input.as_slice()?;
-        let mut out = zeros(input.len(), "input")?;
+        same_channels(input.shape()[0], this.bank.channels(), "input", "model")?;
+        let (input, out) = (input.as_slice()?, out.as_slice_mut()?);
         let bank = &mut this.bank;
-        py.detach(|| bank.run_position_level(input, dt, &level, &force, &mut out))
-            .map_err(raise)?;
-        PyArray1::from_vec(py, out).reshape(shape)
+        py.detach(|| bank.run_position_level(input, dt, &level, &force, out))
+            .map_err(raise)
     }
 
     /// Runs every channel over its row of velocities `v`, shape (B, T), with the GIL released,
     /// the level and the position force placed at the positions `x` (the same shape, checked by
-    /// the Python side).
+    /// the Python side), writing the forces into `out` as [`Engine::_run`] does.
+    #[allow(clippy::too_many_arguments)] // the signals, the step, the two terms and the output
     fn _run_level<'py>(
         slf: &Bound<'py, Self>,
         v: PyReadonlyArray2<'py, f64>,
@@ -173,19 +174,17 @@ impl Engine {
         dt: f64,
         level: Option<&Bound<'py, PyAny>>,
         position_force: Option<&Bound<'py, PyAny>>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        mut out: PyReadwriteArray2<'py, f64>,
+    ) -> PyResult<()> {
         let py = slf.py();
         let level = optional_level(level)?;
         let force = optional_position_force(position_force)?;
         let mut this = lend_mut(slf)?;
-        let shape = [v.shape()[0], v.shape()[1]];
-        same_channels(shape[0], this.bank.channels(), "v", "model")?;
-        let (v, x) = (v.as_slice()?, x.as_slice()?);
-        let mut out = zeros(v.len(), "v")?;
+        same_channels(v.shape()[0], this.bank.channels(), "v", "model")?;
+        let (v, x, out) = (v.as_slice()?, x.as_slice()?, out.as_slice_mut()?);
         let bank = &mut this.bank;
-        py.detach(|| bank.run_level(v, x, dt, &level, &force, &mut out))
-            .map_err(raise)?;
-        PyArray1::from_vec(py, out).reshape(shape)
+        py.detach(|| bank.run_level(v, x, dt, &level, &force, out))
+            .map_err(raise)
     }
 
     /// Runs the single channel over positions `x`, shape (T,), with the GIL released; returns
