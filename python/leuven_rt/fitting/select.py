@@ -172,6 +172,7 @@ def _select_on(
     say("selecting effects")
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
+    target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     drifting = fit(final.structure.with_drift(), scales, target, final.theta)
     drift = _significant(final, drifting, target, settings.drift * unit, settings)
@@ -181,6 +182,7 @@ def _select_on(
         base = fit(structure.with_drift(), scales, target, base.theta)
         steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
         noise, floor, unit = _evidence(final, target, floor, scales)
+        target, final = _rescaled(final, scales, target, noise)
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
     return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
@@ -209,6 +211,20 @@ def _evidence(final: Fitted, target: Target, floor: Floor, scales: Scales) -> tu
     noise = _noise(final, target)
     floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
     return noise, floor, _unit(noise, floor, scales)
+
+
+def _rescaled(final: Fitted, scales: Scales, target: Target, noise: float) -> tuple[Target, Fitted]:
+    """The target counted robustly at ``ROBUST`` times the ``noise`` the final model leaves, when
+    that is above the forward rounds' scale, and ``final`` refitted under it. Coloured noise reads
+    far below its spread in one-sample differences: at the forward rounds' scale, samples missed
+    by two or three times the noise already count as gross errors, and an effect that explains
+    the large errors at every reversal (presliding on a joint whose friction flips over many
+    samples) gains less than its threshold, which is read from this noise."""
+    scale = ROBUST * noise
+    if target.scale is None or not scale > target.scale:
+        return target, final
+    target = dataclasses.replace(target, scale=scale)
+    return target, fit(final.structure, scales, target, final.theta)
 
 
 def _prune(
@@ -313,7 +329,12 @@ def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> 
 
 def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterations: int) -> Fitted | None:
     """``current`` with ``effect`` added, fitted from where ``current`` stands; for
-    ``position_dependence``, the better of its two forms."""
+    ``position_dependence``, the better of its two forms; for ``presliding_hysteresis``, the
+    better of two starts (:func:`_bank_starts`)."""
+    if effect == "presliding_hysteresis":
+        structure = current.structure.with_effect(effect)
+        fits = [fit(structure, scales, target, start, iterations) for start in _bank_starts(current, scales)]
+        return min(fits, key=lambda fitted: fitted.mse)
     if effect != "position_dependence":
         return fit(current.structure.with_effect(effect), scales, target, current.theta, iterations)
     residual = target.force - current.force
@@ -326,6 +347,18 @@ def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterat
         )
         options.append(fit(structure, scales, target, current.theta, iterations))
     return min(options, key=lambda fitted: fitted.mse)
+
+
+def _bank_starts(current: Fitted, scales: Scales) -> list[dict[str, float]]:
+    """Where a presliding bank starts: with all its weight on the stiff element (exactly the
+    model it extends), and with its weight spread evenly over every element. From the first, the
+    force does not depend on the other elements' weights wherever the stiff element alone reaches
+    the friction level, that is on every sample after a reversal but the first, and the rounds
+    weigh that one out where the position comes from an encoder: a friction that flips over many
+    samples after each reversal gives the fit no direction there, though the bank fits it."""
+    elements = scales.deltas.size
+    spread = {f"share_{i}": 1.0 / elements for i in range(elements)}
+    return [dict(current.theta), {**current.theta, **spread}]
 
 
 def _significant(
@@ -456,7 +489,11 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
 
 
 def _excursion(x: FloatArray) -> float:
-    """The median travel between reversals."""
+    """The travel between reversals that half the path is made in: the median of the excursions
+    weighed by their length. Counted per excursion, the jitter of an encoder at a stop and the
+    noise of a position estimate (thousands of reversals of a few counts) would set it, and the
+    bank would be too narrow for the joint's presliding (a Franka joint's friction builds up over
+    milliradians of travel, its noisy position reverses every few micro-radians)."""
     steps = np.diff(x)
     steps = steps[steps != 0]
     if steps.size == 0:
@@ -464,7 +501,9 @@ def _excursion(x: FloatArray) -> float:
     turns = np.flatnonzero(np.sign(steps[1:]) != np.sign(steps[:-1]))
     path = np.cumsum(steps)
     points = np.concatenate(([0.0], path[turns], [path[-1]]))
-    return float(np.median(np.abs(np.diff(points))))
+    lengths = np.sort(np.abs(np.diff(points)))
+    travelled = np.cumsum(lengths)
+    return float(lengths[np.searchsorted(travelled, 0.5 * travelled[-1])])
 
 
 def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:
