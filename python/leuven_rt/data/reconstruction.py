@@ -162,31 +162,23 @@ def noisy_position(x: FloatArray, dt: float) -> bool:
     return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)
 
 
-def median_excursion(x: FloatArray, band: float) -> float:
-    """The median travel between reversals, a reversal counted once the position has come back
-    by more than ``band`` from its furthest point: a servo holding its set point dithers by a
-    count or two at every other sample, and those reversals are not the strokes the presliding
-    bank has to span."""
+def median_excursion(x: FloatArray) -> float:
+    """The travel between reversals that half the path is made in: the median of the excursions
+    weighed by their length. Counted per excursion, a servo's dither by a count about its set
+    point and the noise of a position estimate (thousands of reversals of a few counts) would set
+    it, and the presliding bank would be too narrow for a closed-loop log's or a joint's
+    presliding (a Franka joint's friction builds up over milliradians of travel, its noisy
+    position reverses every few micro-radians)."""
     steps = np.diff(x)
-    moves = np.flatnonzero(steps)
-    if moves.size == 0:
+    steps = steps[steps != 0]
+    if steps.size == 0:
         return 0.0
-    points = [float(x[0])]
-    furthest = float(x[0])
-    direction = 0.0
-    for value in x[moves + 1].tolist():
-        if direction == 0.0:
-            if abs(value - points[0]) > band:
-                direction = math.copysign(1.0, value - points[0])
-                furthest = value
-        elif (value - furthest) * direction > 0.0:
-            furthest = value
-        elif (furthest - value) * direction > band:
-            points.append(furthest)
-            direction, furthest = -direction, value
-    points.append(furthest)
-    travels = np.abs(np.diff(points))
-    return float(np.median(travels))
+    turns = np.flatnonzero(np.sign(steps[1:]) != np.sign(steps[:-1]))
+    path = np.cumsum(steps)
+    points = np.concatenate(([0.0], path[turns], [path[-1]]))
+    lengths = np.sort(np.abs(np.diff(points)))
+    travelled = np.cumsum(lengths)
+    return float(lengths[np.searchsorted(travelled, 0.5 * travelled[-1])])
 
 
 def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:

@@ -96,18 +96,18 @@ def identify(
         # busy machine instead of speeding up.
         run = select(record, effects, settings, lambda text: bar.stage(text))
         bar.stage("the parameters the excitation determines")
-        final, undetermined = _settle(run)
+        final, undetermined = _settle(run, settings)
         bar.stage("the model file and its prediction")
         return _identification(record, run, final, undetermined, effects, settings)
 
 
-def _settle(run: Selection) -> tuple[Fitted, list[Undetermined]]:
+def _settle(run: Selection, settings: Settings) -> tuple[Fitted, list[Undetermined]]:
     final = run.written
 
     def refit(structure: Structure, fixed: dict[str, float]) -> Fitted:
         return fit(structure, run.file_scales, run.file_target, final.theta, fixed=fixed)
 
-    return settle(final, run.file_scales, run.file_target, run.noise, refit)
+    return settle(final, run.file_scales, run.file_target, run.noise, refit, settings.significance * run.unit)
 
 
 def _identification(

@@ -59,9 +59,6 @@ FILTERS = (0.2, 0.05)
 #: Effects that can stand in for each other: an offset and a −x level of its own both shift the
 #: level of one direction of motion against the other's.
 STAND_INS = (("offset", "asymmetry"),)
-#: A reversal of the position counts, for the span of the presliding bank, once the position has
-#: come back by more than this many encoder steps.
-REVERSAL_BAND = 2.0
 #: Errors are counted robustly at this many times the noise (the forward rounds' noise, at or
 #: below the noise): Cauchy's loss, which is the squared error up to about that scale.
 ROBUST = 5.0
@@ -179,6 +176,7 @@ def _select_on(
     say("selecting effects")
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
+    target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
     drifting = fit(final.structure.with_drift(), scales, target, final.theta)
@@ -189,6 +187,7 @@ def _select_on(
         base = fit(structure.with_drift(), scales, target, base.theta)
         steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
         noise, floor, unit = _evidence(final, target, floor, scales)
+        target, final = _rescaled(final, scales, target, noise)
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
@@ -218,6 +217,20 @@ def _evidence(final: Fitted, target: Target, floor: Floor, scales: Scales) -> tu
     noise = _noise(final, target)
     floor = Floor(floor.full, min(floor.weighted, math.sqrt(max(final.mse - noise**2, 0.0))))
     return noise, floor, _unit(noise, floor, scales)
+
+
+def _rescaled(final: Fitted, scales: Scales, target: Target, noise: float) -> tuple[Target, Fitted]:
+    """The target counted robustly at ``ROBUST`` times the ``noise`` the final model leaves, when
+    that is above the forward rounds' scale, and ``final`` refitted under it. Coloured noise reads
+    far below its spread in one-sample differences: at the forward rounds' scale, samples missed
+    by two or three times the noise already count as gross errors, and an effect that explains
+    the large errors at every reversal (presliding on a joint whose friction flips over many
+    samples) gains less than its threshold, which is read from this noise."""
+    scale = ROBUST * noise
+    if target.scale is None or not scale > target.scale:
+        return target, final
+    target = dataclasses.replace(target, scale=scale)
+    return target, fit(final.structure, scales, target, final.theta)
 
 
 def _prune(
@@ -489,7 +502,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
     force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
     stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
     lowest = max(3.0 * step, 1e-5 * stroke)
-    highest = max(min(0.02 * stroke, 0.5 * median_excursion(record.x, REVERSAL_BAND * step)), 30.0 * lowest)
+    highest = max(min(0.02 * stroke, 0.5 * median_excursion(record.x)), 30.0 * lowest)
     grid = np.geomspace(lowest, highest, ELEMENTS)
     # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
     # of the widest Δ (docs/parameters.md#rules).

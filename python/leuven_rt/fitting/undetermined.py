@@ -105,11 +105,17 @@ def settle(
     target: Target,
     noise: float,
     refit: Callable[[Structure, dict[str, float]], Fitted],
+    threshold: float = math.inf,
 ) -> tuple[Fitted, list[Undetermined]]:
     """``fitted`` with its undetermined parameters fixed at their neutral values and the rest
-    refitted (``refit(structure, fixed)``), and what was fixed."""
+    refitted (``refit(structure, fixed)``), and what was fixed.
+
+    A standard error is read from the fit's linearisation. Where parameters trade off nonlinearly
+    (a Stribeck rise against a small Vs and δ), each one's error is large although together they
+    are determined: fixing the rise at 0 takes out an effect the log shows. So the fixed set may
+    cost at most ``threshold`` in the target's mean squared error; when it costs more, a parameter
+    whose neutral value alone (the others as fitted) costs more than ``threshold`` is left free."""
     errors = standard_errors(fitted, scales, target, noise)
-    fixed: dict[str, float] = {}
     found: list[Undetermined] = []
     for name, value in fitted.theta.items():
         kept = neutral(name, fitted.theta)
@@ -117,15 +123,43 @@ def settle(
             continue
         error = errors.get(name, 0.0)
         if not error <= RELATIVE * abs(value - kept):
-            fixed[name] = kept
             found.append(Undetermined(name, value, error, kept))
-    if not fixed:
+    if not found:
         return fitted, []
+    settled = _fixed(fitted, found, refit)
+    if settled.mse - fitted.mse <= threshold:
+        return settled, found
+    found = [item for item in found if _cost(fitted, item, scales, target) <= threshold]
+    if not found:
+        return fitted, []
+    settled = _fixed(fitted, found, refit)
+    if settled.mse - fitted.mse <= threshold:
+        return settled, found
+    return fitted, []
+
+
+def _fixed(
+    fitted: Fitted, found: list[Undetermined], refit: Callable[[Structure, dict[str, float]], Fitted]
+) -> Fitted:
+    fixed = {item.name: item.kept for item in found}
     structure = fitted.structure
     if "Fc_neg" in fixed:
         structure = structure.without("asymmetry")
         fixed = {name: value for name, value in fixed.items() if name not in MINUS_X}
-    return refit(structure, fixed), found
+    return refit(structure, fixed)
+
+
+def _cost(fitted: Fitted, item: Undetermined, scales: Scales, target: Target) -> float:
+    """What fixing ``item`` alone at its neutral value, the rest as fitted, adds to the mean
+    squared error."""
+    theta = dict(fitted.theta)
+    theta[item.name] = item.kept
+    if item.name == "Fc_neg":  # made symmetric: the −x levels the +x ones
+        for minus, plus in (("Fs_neg_rise", "Fs_rise"), ("sigma2_neg", "sigma2")):
+            if minus in theta:
+                theta[minus] = theta.get(plus, 0.0)
+    force = evaluate(fitted.structure, scales, theta, target.motion, target.tau, None).force
+    return target.mse(force) - fitted.mse
 
 
 __all__ = ["MINUS_X", "RELATIVE", "Undetermined", "inflation", "neutral", "settle", "standard_errors"]
