@@ -39,8 +39,8 @@ from .solve import Target
 SEGMENTS = 8
 #: A lead-in covers monotone travel of this many times the widest element's Δ: z settles towards
 #: its sliding value at a rate set by the bank's stiffness there, which its wide elements make
-#: slow (with equal weights over the grid, 4 times leaves forces off by the noise, 64 times by
-#: 2 % of it).
+#: slow (with equal weights over the grid, 4 times leaves the forces off by a third of the noise
+#: in rms, 64 times by 1–2 % of it).
 LEAD_TRAVEL = 64.0
 #: The longest lead-in, in segment lengths: a log that dwells in presliding longer than that (its
 #: small loops remember the last large stroke) starts the segment from the state it gives.
