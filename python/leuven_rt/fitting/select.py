@@ -18,14 +18,10 @@ of the model file that holds it.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import itertools
 import math
-import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
-from typing import TypeVar
 
 import numpy as np
 
@@ -113,20 +109,6 @@ class Selection:
 
 
 Progress = Callable[[str], None]
-
-_Item = TypeVar("_Item")
-_Result = TypeVar("_Result")
-
-
-def each(work: Callable[[_Item], _Result], items: Sequence[_Item]) -> list[_Result]:
-    """``work`` on every item, in order, side by side on the machine's cores: the fits of a round
-    are independent, and their simulations (gms-fit), factorisations (LAPACK) and array work
-    release the GIL. Each result is the one a sequential loop gives."""
-    workers = min(len(items), os.cpu_count() or 1)
-    if workers < 2:
-        return [work(item) for item in items]
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        return list(pool.map(work, items))
 
 
 def select(
@@ -271,14 +253,12 @@ def _prune(
     added = [step.effect for step in steps]
     pruned = False
     while added:
-
-        def reduced_by(effect: str, final: Fitted = final) -> tuple[str, Fitted]:
+        options = []
+        for effect in added:
             structure = final.structure.without(effect)
             theta = {name: value for name, value in final.theta.items() if name in structure.names()
                      or name in structure.share_names(scales.deltas.size)}  # fmt: skip
-            return effect, fit(structure, scales, target, theta, SCREEN)
-
-        options = each(reduced_by, added)
+            options.append((effect, fit(structure, scales, target, theta, SCREEN)))
         effect, reduced = min(options, key=lambda option: option[1].mse)
         if _significant(reduced, final, target, settings.significance * unit, settings):
             break
@@ -314,17 +294,18 @@ def _rounds(
         if not left:
             break
         say(f"round {len(steps) + 1}: trying {', '.join(left)}")
-        found = each(functools.partial(_candidate, current, scales=scales, target=target), left)
+        found = [_candidate(current, name, scales, target) for name in left]
         candidates = [c for c in found if c is not None]
         tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
         best = _choose(current, candidates, target, settings, unit)
         if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
             ranked = sorted((c for c in candidates if c.mse < current.mse), key=lambda c: c.mse)[:PAIRED]
-            combined = each(
-                functools.partial(_pair, current, scales=scales, target=target),
-                list(itertools.combinations(ranked, 2)),
-            )
-            best = _choose(current, [pair for pair in combined if pair is not None], target, settings, unit)
+            pairs = []
+            for first, second in itertools.combinations(ranked, 2):
+                pair = _extend(first, _added(current, second), scales, target, SCREEN)
+                if pair is not None:
+                    pairs.append(pair)
+            best = _choose(current, pairs, target, settings, unit)
         if best is None:
             break
         chosen = fit(best.structure, scales, target, best.theta)
@@ -341,11 +322,6 @@ def _rounds(
         )
         current = chosen
     return steps, current, tried
-
-
-def _pair(current: Fitted, pair: tuple[Fitted, Fitted], scales: Scales, target: Target) -> Fitted | None:
-    """The first candidate of ``pair`` with the effect the second added to ``current``."""
-    return _extend(pair[0], _added(current, pair[1]), scales, target, SCREEN)
 
 
 def _added(current: Fitted, candidate: Fitted) -> str:
@@ -457,12 +433,8 @@ def choose_reconstruction(
         except DataError:
             continue
         prepared.append((option, whole if sample is None else sample.of(whole, FIT_ROWS), scales))
-
-    def refit(option: tuple[Reconstruction, Target, Scales]) -> Fitted:
-        return fit(fitted.structure, option[2], option[1], fitted.theta, iterations)
-
-    refitted = each(refit, prepared)
-    errors = [full_mse(one, option[1]) for one, option in zip(refitted, prepared, strict=True)]
+    refitted = [fit(fitted.structure, on[2], on[1], fitted.theta, iterations) for on in prepared]
+    errors = [full_mse(one, on[1]) for one, on in zip(refitted, prepared, strict=True)]
     # The first of the lowest: the order of the options breaks ties.
     best = min(range(len(prepared)), key=errors.__getitem__)
     reconstruction, target, scales = prepared[best]
