@@ -4,13 +4,17 @@ wall time on the EMPS estimation set when present.
 
 The logs come from :func:`leuven_rt.discrepancy.hidden.make_hidden` with the hidden effects
 presliding_hysteresis, position_dependence and inertia (baseline coulomb, viscous; a logged
-velocity): the same excitation (about 6.2 s) sampled finer for more samples, the position's
-quantization scaled with the step. Each size runs in a subprocess of its own (the log generated
-and saved first by another), so that the peak resident memory (``ru_maxrss``) is that of one
-diagnose: the interpreter and its libraries included.
+velocity), sampled at 5 kHz: a longer log is a longer run (the excitation repeated with fresh
+random draws), as a long log is, 3.6 million samples 12 minutes of motion. Above
+``Settings.rounds_samples`` (65 536) the rounds name effects on a sample of the log and the
+written file is fitted on all of it (docs/effects.md#long-records). Each size runs in a
+subprocess of its own (the log generated and saved first by another), so that the peak resident
+memory (``ru_maxrss``) is that of one diagnose: the interpreter and its libraries included;
+progress goes to stderr.
 
-    python benches/diagnose.py            # 30k, 100k, 300k, 1M, 3.6M samples and EMPS
-    python benches/diagnose.py --quick    # 30k and 100k samples (CI-sized)
+    python benches/diagnose.py                    # 30k, 100k, 300k, 1M, 3.6M samples and EMPS
+    python benches/diagnose.py --quick            # 30k and 100k samples (CI-sized)
+    python benches/diagnose.py --sizes 30000,1e6  # chosen sizes
 """
 
 from __future__ import annotations
@@ -29,8 +33,8 @@ import numpy as np
 
 TRUTH = ("coulomb", "viscous", "presliding_hysteresis", "position_dependence", "inertia")
 BASELINE = "coulomb,viscous"
-#: Length of the generated excitation [s], and the step it was designed for [s].
-DURATION, STEP = 31_166 * 2e-4, 2e-4
+#: The logs' step [s] and the position's quantization [m].
+STEP, QUANTIZATION = 2e-4, 1e-9
 SIZES = (30_000, 100_000, 300_000, 1_000_000, 3_600_000)
 QUICK = (30_000, 100_000)
 EMPS = Path(__file__).resolve().parents[2] / "shared" / "data" / "emps" / "DATA_EMPS.mat"
@@ -39,8 +43,7 @@ EMPS = Path(__file__).resolve().parents[2] / "shared" / "data" / "emps" / "DATA_
 def generate(samples: int, path: Path) -> None:
     from leuven_rt.discrepancy.hidden import make_hidden
 
-    dt = DURATION / samples
-    hidden = make_hidden(TRUTH, dt=dt, quantization=1e-9 * dt / STEP, with_velocity=True)
+    hidden = make_hidden(TRUTH, dt=STEP, quantization=QUANTIZATION, with_velocity=True, samples=samples)
     data = hidden.data
     assert data.v is not None
     np.savez(path, t=data.t, x=data.x, f=data.f, v=data.v)
@@ -80,6 +83,7 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--quick", action="store_true", help="30k and 100k samples only")
+    parser.add_argument("--sizes", help="comma-separated sizes in samples, e.g. 30000,1e6 (no EMPS)")
     parser.add_argument("--one", help=argparse.SUPPRESS)
     parser.add_argument("--generate", nargs=2, help=argparse.SUPPRESS)
     arguments = parser.parse_args()
@@ -89,11 +93,15 @@ def main() -> None:
     if arguments.one:
         print(json.dumps(run(arguments.one)))
         return
-    print(f"cores: {os.cpu_count()}; hidden {', '.join(TRUTH[2:])}; baseline {BASELINE}")
-    print("| samples | diagnose [s] | µs per sample | peak memory [MB] | named | final rms / noise |")
-    print("|---:|---:|---:|---:|---|---:|")
+    print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.1f}; hidden {', '.join(TRUTH[2:])}; "
+          f"baseline {BASELINE}; {1 / STEP:g} Hz")  # fmt: skip
+    print("| samples | diagnose [s] | µs per sample | peak memory [MB] | named | final rms / noise | load |")
+    print("|---:|---:|---:|---:|---|---:|---:|")
     with tempfile.TemporaryDirectory() as folder:
-        for size in QUICK if arguments.quick else SIZES:
+        sizes = QUICK if arguments.quick else SIZES
+        if arguments.sizes:
+            sizes = tuple(int(float(size)) for size in arguments.sizes.split(","))
+        for size in sizes:
             path = Path(folder) / f"log{size}.npz"
             subprocess.run([sys.executable, __file__, "--generate", str(size), str(path)], check=True)
             r = measure(str(path))
@@ -102,11 +110,12 @@ def main() -> None:
             named = ", ".join(map(str, r["named"]))  # type: ignore[call-overload]
             cost = 1e6 * seconds / samples
             print(
-                f"| {samples:,} | {seconds:.1f} | {cost:.0f} | {peak:.0f} | {named} | {ratio:.2f} |",
+                f"| {samples:,} | {seconds:.1f} | {cost:.0f} | {peak:.0f} | {named} | {ratio:.2f} | "
+                f"{os.getloadavg()[0]:.1f} |",
                 flush=True,
             )
             path.unlink()
-    if arguments.quick:
+    if arguments.quick or arguments.sizes:
         return
     if EMPS.is_file():
         r = measure(str(EMPS))

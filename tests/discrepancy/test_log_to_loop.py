@@ -122,12 +122,23 @@ def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
         ("joint", -1.0), ("joint", False),
         ("drift", -0.5), ("drift", math.nan),
         ("unexplained", -1e-9), ("unexplained", math.inf),
+        ("rounds_samples", 4095), ("rounds_samples", 65_536.0), ("rounds_samples", True),
+        ("rounds_samples", None),
     ],
 )  # fmt: skip
 def test_bad_settings_are_refused_naming_the_field(name: str, value: Any) -> None:
     with pytest.raises(InputError, match=rf"^`settings\.{name}` must be ") as caught:
         Settings(**{name: value})
     assert caught.value.field == f"settings.{name}"
+
+
+def test_too_few_samples_for_the_rounds_are_refused_with_the_bound() -> None:
+    with pytest.raises(InputError) as caught:
+        Settings(rounds_samples=4095)
+    assert (caught.value.kind, caught.value.value, caught.value.bound) == ("out_of_range", 4095, 4096)
+    with pytest.raises(InputError) as caught:
+        Settings(rounds_samples=65_536.0)  # type: ignore[arg-type]
+    assert (caught.value.kind, caught.value.value) == ("not_integer", 65_536.0)
 
 
 def test_settings_of_another_type_are_refused() -> None:
@@ -145,7 +156,7 @@ def test_the_report_echoes_the_settings() -> None:
     report = json.loads(diagnosis.to_json())
     assert report["settings"] == {
         "chunks": 8, "significance": 0.6, "loss": 0.25, "joint": 1.5, "drift": 1.2,
-        "unexplained": 0.3,
+        "unexplained": 0.3, "rounds_samples": 65_536,
     }  # fmt: skip
 
 

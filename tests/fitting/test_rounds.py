@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import leuven_rt as lr
+from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
 from leuven_rt.fitting.solve import fit
@@ -29,7 +30,8 @@ def slowly_sampled_bank() -> MotionData:
 
 def test_a_bank_found_only_from_a_spread_start_is_found() -> None:
     record = slowly_sampled_bank()
-    target, scales = select.prepare(record, select.rounds_reconstruction(record))
+    noisy = noisy_position(record.x, record.dt)
+    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
     structure = Structure(frozenset({"coulomb", "viscous"}))
     base = fit(structure, scales, target, {"Fc": 4.0, "sigma2": 50.0})
     # From all its weight on the stiff element the fit has no direction: the samples where the

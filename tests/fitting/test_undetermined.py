@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import leuven_rt as lr
+from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select, undetermined
 from leuven_rt.fitting.solve import Fitted, fit
@@ -23,7 +24,8 @@ def fitted_with_offset() -> tuple[Fitted, select.Target, select.Scales]:
     truth = lr.Params(Fc=1.0, Fs=1.0, Vs=0.01, delta=2.0, n=2.0, sigma2=0.02, W=[2.0], Delta=[1e-9])
     f = lr.simulate(truth, v, dt) + 0.3 + np.random.default_rng(5).normal(0.0, NOISE, t.size)
     record = MotionData(t, x, f, v=v)
-    target, scales = select.prepare(record, select.rounds_reconstruction(record))
+    noisy = noisy_position(record.x, record.dt)
+    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
     structure = Structure(frozenset({"coulomb", "viscous", "offset"}))
     return fit(structure, scales, target, {"Fc": 1.0, "sigma2": 0.1, "offset": 0.0}), target, scales
 

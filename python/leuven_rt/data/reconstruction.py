@@ -181,17 +181,23 @@ def median_excursion(x: FloatArray) -> float:
     return float(lengths[np.searchsorted(travelled, 0.5 * travelled[-1])])
 
 
-def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
-    """|x − x at the last change of the direction of motion| at every sample."""
+def last_reversal(v: FloatArray) -> NDArray[np.int64]:
+    """At every sample, the sample where the direction of motion last changed (0 before the
+    first change)."""
     direction = np.sign(v)
     moving = np.flatnonzero(direction)
-    turns = np.zeros(x.size, dtype=bool)
+    turns = np.zeros(v.size, dtype=bool)
     if moving.size > 1:
         flips = moving[1:][direction[moving[1:]] != direction[moving[:-1]]]
         turns[flips] = True
     turns[0] = True
-    start = np.maximum.accumulate(np.where(turns, np.arange(x.size), 0))
-    out: FloatArray = np.abs(x - x[start])
+    out: NDArray[np.int64] = np.maximum.accumulate(np.where(turns, np.arange(v.size), 0))
+    return out
+
+
+def travel_since_reversal(x: FloatArray, v: FloatArray) -> FloatArray:
+    """|x − x at the last change of the direction of motion| at every sample."""
+    out: FloatArray = np.abs(x - x[last_reversal(v)])
     return out
 
 
@@ -208,6 +214,7 @@ __all__ = [
     "describe",
     "differences",
     "filter_margin",
+    "last_reversal",
     "median_excursion",
     "noisy_position",
     "reconstruct",

@@ -63,10 +63,19 @@ class HiddenData:
 def make_hidden(
     truth: Collection[str], *, drift: bool = False, dt: float = 4e-4, noise_std: float = 0.02,
     quantization: float = 1e-9, with_velocity: bool = False, seed: int = 0, elements: int = 6,
+    samples: int | None = None,
 ) -> HiddenData:  # fmt: skip
+    """A log of ``truth`` (module documentation). ``samples``: the log's length, the excitation
+    repeated with fresh random draws (each run continuing where the last ended) until it is
+    that long, then cut; default: one run of the excitation."""
     effects = parse_effects(list(truth), "truth")
     rng = np.random.default_rng(seed)
     x_true = excitation(dt, PRESLIDING_RANGE, VS, rng)
+    if samples is not None:
+        runs = [x_true]
+        while sum(run.size for run in runs) < samples:
+            runs.append(runs[-1][-1] + excitation(dt, PRESLIDING_RANGE, VS, rng))
+        x_true = np.concatenate(runs)[:samples]
     # The velocity simulate_position steps with (v₀ = 0, vₖ = (xₖ − xₖ₋₁)/dt): the log's `v` is
     # then the velocity the truth saw.
     v_true = np.concatenate([[0.0], np.diff(x_true) / dt])

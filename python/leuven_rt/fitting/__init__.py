@@ -7,7 +7,8 @@ of its parameters (:func:`sensitivities`, the Rust crate gms-fit; :mod:`.evaluat
 bounded Gauss–Newton (:mod:`.solve`). :mod:`.select` runs the rounds that add effects against a
 unit of evidence set by the noise and by the floor the log allows (:mod:`.floor`), with
 :mod:`.periods` for ripples, :mod:`.remains` for what is left and :mod:`.undetermined` for what
-the excitation cannot tell; :mod:`.file` writes the result; :mod:`.settings` holds the thresholds.
+the excitation cannot tell, on a sample of a long record (:mod:`.sample`); :mod:`.file` writes
+the result; :mod:`.settings` holds the thresholds.
 :func:`simulate_sets` runs many parameter sets along one signal. The equations of the
 sensitivities are in docs/sensitivities.md.
 

@@ -104,15 +104,24 @@ def evaluate(
         return Evaluation(values, force, None)
     assert derivatives is not None
     index = {name: i for i, name in enumerate(names)}
-    # d friction/dθ, then the viscous part, which the level does not scale, split off again.
-    d_friction = derivatives @ values.jacobian
-    viscous_rows = np.zeros((int(rows.sum()), len(names)))
-    positive = np.where(v >= 0, v, 0.0)[rows]
-    negative = np.where(v < 0, v, 0.0)[rows]
+    # d friction/dθ, then the viscous part dV = v·dσ2/dθ, which the level does not scale, split
+    # off again: factor·(dF − dV) + dV. dV is nonzero only in the columns that σ2 and σ2_neg
+    # depend on; the other columns are factor·dF (dF itself where no level or drift scales).
+    jac = derivatives @ values.jacobian
     row_of = {name: i for i, name in enumerate(FRICTION)}
-    viscous_rows += np.outer(positive, values.jacobian[row_of["sigma2"]])
-    viscous_rows += np.outer(negative, values.jacobian[row_of["sigma2_neg"]])
-    jac = factor[rows, None] * (d_friction - viscous_rows) + viscous_rows
+    on_positive, on_negative = values.jacobian[row_of["sigma2"]], values.jacobian[row_of["sigma2_neg"]]
+    v_rows = v[rows]
+    positive, negative = np.where(v_rows >= 0, v_rows, 0.0), np.where(v_rows < 0, v_rows, 0.0)
+    viscous_parts: dict[int, FloatArray] = {
+        int(column): positive * float(on_positive[column]) + negative * float(on_negative[column])
+        for column in np.flatnonzero((on_positive != 0) | (on_negative != 0))
+    }
+    for place, part in viscous_parts.items():
+        jac[:, place] -= part
+    if values.level is not None or structure.drift:
+        jac *= factor[rows, None]
+    for place, part in viscous_parts.items():
+        jac[:, place] += part
     contact_rows = contact[rows]
     series_names = _series_names(structure, names) if basis else []
     for column_values, name in zip(basis, series_names, strict=True):

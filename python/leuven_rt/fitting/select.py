@@ -38,9 +38,10 @@ from ..data.records import MotionData
 from ..data.signals import residual_noise
 from ..errors import DataError
 from ..modelfile import Reconstruction
-from .evaluate import params_of
+from .evaluate import evaluate, params_of
 from .floor import Floor, floor_estimate, with_reversals
 from .periods import find_period
+from .sample import SEGMENTS, Sample, segments
 from .settings import Settings
 from .solve import Fitted, Target, fit
 from .structure import CATALOGUE, Scales, Structure
@@ -123,9 +124,15 @@ def select(
     """The rounds on ``record`` from the effects ``baseline`` (module documentation)."""
     say = progress or (lambda _: None)
     structure = Structure(frozenset(baseline))
-    reconstruction = rounds_reconstruction(record)
-    target, scales = prepare(record, reconstruction)
-    run = _select_on(structure, target, scales, settings, say)
+    noisy = noisy_position(record.x, record.dt)
+    reconstruction = rounds_reconstruction(record, noisy)
+    whole, scales = prepare(record, reconstruction, noisy)
+    sample = segments(whole.motion, float(scales.grid[-1]), settings.rounds_samples)
+    if sample is None:
+        run = _select_on(structure, whole, scales, settings, say)
+    else:
+        say(f"naming on {sample.size} of the record's {record.samples} samples, {SEGMENTS} segments of it")
+        run = _lifted(_select_on(structure, sample.of(whole, FIT_ROWS), scales, settings, say), whole, scales)
     target = run.target
     residual = target.force - run.final.force
     gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
@@ -133,7 +140,9 @@ def select(
     if reconstruction.source == "position":
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
-    file = choose_reconstruction(record, without)
+    file = choose_reconstruction(record, without, noisy, sample)
+    if sample is not None:
+        say("fitting the written file on the whole record")
     written = fit(without.structure, file[2], file[1], file[3].theta)
     return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
                      without, run.unit, run.tried, file[0], file[1], file[2], written,
@@ -192,6 +201,24 @@ def _select_on(
         final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
     return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
+
+
+def _lifted(run: _Run, whole: Target, scales: Scales) -> _Run:
+    """``run``'s models on the ``whole`` record: their forces simulated along it and their mean
+    squared errors over it (the rounds ran on a sample of it, :mod:`.sample`)."""
+    target = dataclasses.replace(whole, scale=run.target.scale)
+    done: dict[int, Fitted] = {}
+
+    def on_whole(fitted: Fitted) -> Fitted:
+        if id(fitted) not in done:
+            simulated = evaluate(fitted.structure, scales, fitted.theta, target.motion, target.tau, None)
+            done[id(fitted)] = Fitted(fitted.structure, fitted.theta, simulated, target.mse(simulated.force),
+                                      fitted.iterations)  # fmt: skip
+        return done[id(fitted)]
+
+    steps = [Step(step.effect, on_whole(step.before), on_whole(step.after)) for step in run.steps]
+    return dataclasses.replace(run, base=on_whole(run.base), steps=steps, final=on_whole(run.final),
+                               without=on_whole(run.without), target=target)  # fmt: skip
 
 
 def _noise(fitted: Fitted, target: Target) -> float:
@@ -412,14 +439,14 @@ def _choose(
     return min(close, key=lambda c: (len(c.theta), c.mse))
 
 
-def rounds_reconstruction(record: MotionData) -> Reconstruction:
+def rounds_reconstruction(record: MotionData, noisy: bool) -> Reconstruction:
     """The reconstruction the rounds name effects under: the logged velocity where there is one,
     else the raw encoder position, whose ambiguous reversals are known to the sample; a position
-    whose noise reverses it (:func:`~leuven_rt.data.reconstruction.noisy_position`) through the
-    lighter of the low-passes."""
+    whose noise reverses it (``noisy``: :func:`~leuven_rt.data.reconstruction.noisy_position` of
+    the record) through the lighter of the low-passes."""
     if record.v is not None:
         return Reconstruction("velocity")
-    if noisy_position(record.x, record.dt):
+    if noisy:
         return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
     return Reconstruction("position")
 
@@ -432,11 +459,11 @@ def _every_sample(samples: int) -> FloatArray:
     return weight
 
 
-def reconstruction_options(record: MotionData) -> list[Reconstruction]:
+def reconstruction_options(record: MotionData, noisy: bool) -> list[Reconstruction]:
     """The reconstructions the written file may use (docs/data-and-reports.md#reconstruction):
     that of the rounds, and the encoder position through zero-phase low-passes."""
     nyquist = 0.5 / record.dt
-    options = [rounds_reconstruction(record)]
+    options = [rounds_reconstruction(record, noisy)]
     if record.v is not None:
         options.append(Reconstruction("position"))
     options += [Reconstruction("position", share * nyquist) for share in FILTERS]
@@ -444,41 +471,53 @@ def reconstruction_options(record: MotionData) -> list[Reconstruction]:
 
 
 def full_mse(fitted: Fitted, target: Target) -> float:
-    """The mean squared simulation error over every sample but the filter's edges: what
-    :func:`leuven_rt.predict` reports, whatever the weights."""
-    error = (fitted.force - target.force)[_every_sample(target.force.size) > 0]
+    """The mean squared simulation error over the samples ``target`` judges (every sample but the
+    filters' edges): what :func:`leuven_rt.predict` reports, whatever the weights."""
+    error = (fitted.force - target.force)[target.judged]
     return float(np.mean(error**2))
 
 
 def choose_reconstruction(
-    record: MotionData, fitted: Fitted, iterations: int = SCREEN
+    record: MotionData, fitted: Fitted, noisy: bool, sample: Sample | None = None, iterations: int = SCREEN
 ) -> tuple[Reconstruction, Target, Scales, Fitted]:
     """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
-    every sample, with its target, scales and fit. The file is judged as ``predict`` judges it:
-    by the squared error over every sample but the filters' edges, so it is fitted that way too
-    (no robust loss, the reversals the rounds leave out included): the error at a reversal is
-    part of what a compensator driven by this signal gives."""
-    best: tuple[float, Reconstruction, Target, Scales, Fitted] | None = None
-    for reconstruction in reconstruction_options(record):
+    every sample, with its target (the whole record's), scales and fit (on ``sample`` when
+    given, :mod:`.sample`). The file is judged as ``predict`` judges it: by the squared error
+    over every sample but the filters' edges, so it is fitted that way too (no robust loss, the
+    reversals the rounds leave out included): the error at a reversal is part of what a
+    compensator driven by this signal gives."""
+    prepared: list[tuple[Reconstruction, Target, Scales]] = []
+    for option in reconstruction_options(record, noisy):
         try:
-            target, scales = prepare(record, reconstruction)
+            whole, scales = _file_target(record, option, noisy)
         except DataError:
             continue
-        target = dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None)
-        refitted = fit(fitted.structure, scales, target, fitted.theta, iterations)
-        error = full_mse(refitted, target)
-        if best is None or error < best[0]:
-            best = (error, reconstruction, target, scales, refitted)
-    assert best is not None
-    return best[1], best[2], best[3], best[4]
+        prepared.append((option, whole if sample is None else sample.of(whole, FIT_ROWS), scales))
+    refitted = [fit(fitted.structure, on[2], on[1], fitted.theta, iterations) for on in prepared]
+    errors = [full_mse(one, on[1]) for one, on in zip(refitted, prepared, strict=True)]
+    # The first of the lowest: the order of the options breaks ties.
+    best = min(range(len(prepared)), key=errors.__getitem__)
+    reconstruction, target, scales = prepared[best]
+    if sample is not None:
+        target = _file_target(record, reconstruction, noisy)[0]
+    return reconstruction, target, scales, refitted[best]
 
 
-def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target, Scales]:
-    """The target (force, weights, motion) and scales of ``record`` under ``reconstruction``."""
+def _file_target(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> tuple[Target, Scales]:
+    """The target of the written file's fit under ``reconstruction``: every sample but the
+    filters' edges, counted plainly."""
+    target, scales = prepare(record, reconstruction, noisy)
+    return dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None), scales
+
+
+def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> tuple[Target, Scales]:
+    """The target (force, weights, motion) and scales of ``record`` under ``reconstruction``;
+    ``noisy``: whether the record's position is noisy
+    (:func:`~leuven_rt.data.reconstruction.noisy_position`)."""
     motion = reconstruct(record, reconstruction)
     samples = record.t.size
     weight = _every_sample(samples)
-    if reconstruction.source == "position" and not noisy_position(record.x, record.dt):
+    if reconstruction.source == "position" and not noisy:
         # An encoder's reversals are ambiguous from the last count to the first; a position whose
         # noise spans counts has no such window (its low-pass is the motion), and its reversals
         # are where presliding shows.
@@ -512,7 +551,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction) -> tuple[Target,
                     half_stroke=0.5 * stroke)  # fmt: skip
     tau = np.linspace(-1.0, 1.0, samples)
     stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
-    return Target(record.f, weight, motion, tau, record.x, stride), scales
+    return Target(record.f, weight, motion, tau, record.x, _every_sample(samples) > 0, stride), scales
 
 
 def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:

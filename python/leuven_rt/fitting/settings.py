@@ -13,6 +13,9 @@ from typing import Any
 
 from ..errors import InputError, shown
 
+#: The fewest samples the rounds may run on: 8 segments of 512 samples.
+MIN_ROUNDS_SAMPLES = 4096
+
 
 @dataclass(frozen=True, kw_only=True)
 class Settings:
@@ -34,9 +37,16 @@ class Settings:
     unexplained: float = 0.2
     """What remains is significant when its weighted mean square exceeds σ² by more than this many
     units."""
+    rounds_samples: int = 65_536
+    """On a longer record the rounds name effects and choose the reconstruction on this many of
+    its samples, in whole segments spread over it, and the written file is then fitted on the
+    whole record (docs/effects.md#long-records): the rounds' cost stops growing with the length
+    of the log, while a sample this size still reads a mean squared error to 0.006·σ²
+    (σ²·√(2/N)), far below the thresholds above. Above the 60 000 samples of the logs the
+    thresholds were set on, which are identified whole."""
 
     def __post_init__(self) -> None:
-        for name, low in (("chunks", 2),):
+        for name, low in (("chunks", 2), ("rounds_samples", MIN_ROUNDS_SAMPLES)):
             value: Any = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
                 integer = isinstance(value, numbers.Integral) and not isinstance(value, bool)

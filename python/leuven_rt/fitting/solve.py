@@ -69,6 +69,9 @@ class Target:
     """Time scaled to [−1, 1] over the record (the drift's coordinate)."""
     recorded_x: FloatArray
     """The position as the log recorded it (the encoder's counts)."""
+    judged: NDArray[np.bool_]
+    """The samples a prediction is judged on, as :func:`leuven_rt.predict` judges it: every
+    sample but the filters' edges (and on a sampled record, its lead-ins: :mod:`.sample`)."""
     stride: int = 1
     """The fit's residual and Jacobian take every ``stride``-th weighted sample (a long record is
     simulated whole but fitted on a subsample); mean squared errors take them all."""
@@ -125,9 +128,12 @@ def fit(
 
     rows = target.rows
     root_weight = np.sqrt(target.weight[rows])
+    # In units of the log's force, so that the solver's tolerances mean the same at any scale.
+    row_scale = root_weight / scales.force
     measured = target.force[rows]
     shares = [i for i, name in enumerate(names) if name.startswith("share_")]
     scale_row = math.sqrt(float(rows.sum())) * 0.1
+    every_free = len(free) == len(every)
     cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
 
     def both(x: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -142,14 +148,18 @@ def fit(
                 cache[key] = (worst, np.zeros((worst.size, len(names))))
                 return cache[key]
             assert result.jacobian is not None
-            # In units of the log's force, so that the solver's tolerances mean the same at any scale.
-            residual = (result.force[rows] - measured) * (root_weight / scales.force)
-            jac = result.jacobian[:, free] * (root_weight / scales.force)[:, None]
+            count = row_scale.size
+            residual = np.empty(count + bool(shares))
+            # Column-major, as the solver has always been given it: its products round by the
+            # layout, so keeping it keeps every fit bit for bit.
+            jac = np.empty((count + bool(shares), len(names)), order="F")
+            np.multiply(result.force[rows] - measured, row_scale, out=residual[:count])
+            np.multiply(result.jacobian if every_free else result.jacobian[:, free], row_scale[:, None],
+                        out=jac[:count])  # fmt: skip
             if shares:
-                extra = np.zeros((1, len(names)))
-                extra[0, shares] = scale_row
-                residual = np.append(residual, scale_row * (x[shares].sum() - 1.0))
-                jac = np.vstack([jac, extra])
+                residual[count] = scale_row * (x[shares].sum() - 1.0)
+                jac[count] = 0.0
+                jac[count, shares] = scale_row
             cache[key] = (residual, jac)
         return cache[key]
 

@@ -1,0 +1,91 @@
+"""A long record is named on whole segments of it (docs/effects.md#long-records): the segments
+are spread over the record, their lead-ins are simulated but neither fitted nor judged, and the
+forces on them are those of a simulation of the whole record."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import leuven_rt as lr
+from leuven_rt.data.reconstruction import noisy_position
+from leuven_rt.data.synthetic import make_data
+from leuven_rt.discrepancy.hidden import make_hidden
+from leuven_rt.fitting import Settings
+from leuven_rt.fitting.evaluate import evaluate
+from leuven_rt.fitting.sample import LONGEST_LEAD, MIN_LEAD, SEGMENTS, segments
+from leuven_rt.fitting.select import FIT_ROWS, prepare, rounds_reconstruction
+from leuven_rt.fitting.solve import Target
+from leuven_rt.fitting.structure import Scales, Structure, start
+
+BUDGET = 8192
+EFFECTS = ("coulomb", "viscous", "stribeck", "presliding_hysteresis")
+
+
+def whole_target(data: lr.MotionData) -> tuple[Target, Scales]:
+    noisy = noisy_position(data.x, data.dt)
+    return prepare(data, rounds_reconstruction(data, noisy), noisy)
+
+
+def test_a_record_within_the_budget_is_used_whole() -> None:
+    data = make_data(seed=0).data
+    target, scales = whole_target(data)
+    assert segments(target.motion, float(scales.grid[-1]), data.samples) is None
+    assert segments(target.motion, float(scales.grid[-1]), data.samples - 1) is not None
+
+
+def test_the_segments_are_spread_over_the_record_and_their_lead_ins_are_not_fitted() -> None:
+    data = make_data(seed=0).data
+    target, scales = whole_target(data)
+    sample = segments(target.motion, float(scales.grid[-1]), BUDGET)
+    assert sample is not None
+    assert sample.size == BUDGET
+    fitted = sample.take[~sample.lead]
+    length = BUDGET // SEGMENTS
+    assert fitted[0] == 0 and fitted[-1] == data.samples - 1
+    assert np.all(np.diff(fitted) > 0)  # no sample fitted twice
+    pieces = np.split(sample.take, sample.starts[1:])
+    assert len(pieces) == SEGMENTS
+    for piece, begin in zip(pieces, sample.starts, strict=True):
+        lead = sample.lead[begin : begin + piece.size]
+        assert np.count_nonzero(~lead) == length
+        assert np.all(np.diff(piece) == 1)  # each piece is contiguous in the record
+        assert begin == 0 or MIN_LEAD <= np.count_nonzero(lead) <= LONGEST_LEAD * length
+    on = sample.of(target, FIT_ROWS)
+    assert np.all(on.weight[sample.lead] == 0) and not np.any(on.judged[sample.lead])
+    assert np.array_equal(on.weight[~sample.lead], target.weight[fitted])
+
+
+@pytest.mark.parametrize("logged_velocity", [False, True])
+def test_the_forces_on_the_segments_are_those_of_the_whole_record(logged_velocity: bool) -> None:
+    """To within 5 % of the noise in rms, for a bank that settles slowly (equal weights over the
+    grid, 1.05 times the static level)."""
+    if logged_velocity:
+        log = make_hidden(EFFECTS, dt=2e-4, with_velocity=True, samples=100_000)
+        data, noise, budget = log.data, log.noise_std, 65_536
+    else:
+        synthetic = make_data(seed=0)
+        data, noise, budget = synthetic.data, synthetic.noise_std, 16_384
+    target, scales = whole_target(data)
+    structure = Structure(frozenset(EFFECTS))
+    elements = scales.deltas.size
+    given = {"Fc": 1.0, "sigma2": 10.0, "Fs_rise": 0.5, "log_margin": float(np.log(1.05))}
+    theta = start(structure, scales, elements, given)
+    theta.update({f"share_{i}": 1.0 / elements for i in range(elements)})
+    whole = evaluate(structure, scales, theta, target.motion, target.tau, None).force
+    sample = segments(target.motion, float(scales.grid[-1]), budget)
+    assert sample is not None
+    on = sample.of(target, FIT_ROWS)
+    assert on.motion.input == ("velocity" if logged_velocity else "position")
+    sampled = evaluate(structure, scales, theta, on.motion, on.tau, None).force
+    error = (sampled - whole[sample.take])[~sample.lead]
+    assert np.sqrt(np.mean(error**2)) <= 0.05 * noise
+    assert np.max(np.abs(error)) <= 0.25 * noise
+
+
+def test_a_long_record_is_named_on_the_sample_and_its_file_fitted_whole() -> None:
+    log = make_data(seed=0)
+    result = lr.identify(log.data, settings=Settings(rounds_samples=16_384))
+    assert set(result.diagnosis.named_effects) == {"stribeck", "presliding_hysteresis"}
+    assert lr.predict(result.model, log.data).rms <= 1.2 * log.noise_std
+    assert result.diagnosis.rms_after == pytest.approx(lr.predict(result.model, log.data).rms, rel=1e-12)
