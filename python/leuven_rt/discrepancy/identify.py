@@ -135,7 +135,8 @@ def _identification(
     residuals[-1] = record.f - prediction.f_model
     steps = [
         Step(step.effect, layout.where_improved(before, after, force), _rms(before), _rms(after),
-             _params(step.effect, step.after, written), math.sqrt(step.before.mse), math.sqrt(step.after.mse))
+             _params(step.effect, step.after, written), math.sqrt(run.target.mse(step.before.force)),
+             math.sqrt(run.target.mse(step.after.force)))
         for step, before, after in zip(run.steps, residuals[:-1], residuals[1:], strict=True)
     ]  # fmt: skip
     travel = travel_since_reversal(motion.x, motion.v)

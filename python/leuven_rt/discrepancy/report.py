@@ -25,10 +25,10 @@ class Step:
     rms_after: float
     params: dict[str, Any]
     robust_before: float
-    """The error the rounds weighed when they chose the effect, before and after [N or N·m]: the
-    root of the robust mean loss over the samples the fit uses, where a gross error counts little
-    more than one at the robust scale. Over every sample an effect can raise the rms while it
-    lowers this (its models are fitted to this)."""
+    """The error the rounds weigh, before and after [N or N·m]: the root of the robust mean loss
+    over the samples the fit uses, at the backward round's scale, where a gross error counts
+    little more than one at that scale. Over every sample an effect can raise the rms while it
+    lowers this (its models are fitted to a robust loss)."""
     robust_after: float
 
 

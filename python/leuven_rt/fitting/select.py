@@ -181,6 +181,7 @@ def _select_on(
     # noise (a drive that lets go at a stop, a spike) weighs little more than one missed by it,
     # so that no effect is named to explain it.
     target = dataclasses.replace(target, scale=ROBUST * math.sqrt(permissive))
+    forward = target
     base = fit(structure, scales, target, base.theta)
     say("selecting effects")
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
@@ -193,6 +194,8 @@ def _select_on(
     without = final
     if drift:
         say("a drift of the level: selecting again with it fitted alongside")
+        # The rounds again as the first time: forward at the forward rounds' scale.
+        target = forward
         base = fit(structure.with_drift(), scales, target, base.theta)
         steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
         noise, floor, unit = _evidence(final, target, floor, scales)
@@ -200,6 +203,8 @@ def _select_on(
         final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
         final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
         without = fit(final.structure.with_drift(False), scales, target, final.theta)
+    if steps and steps[-1].after is not final:  # refitted at the backward round's scale
+        steps[-1] = Step(steps[-1].effect, steps[-1].before, final)
     return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
 
 
@@ -323,6 +328,7 @@ def _exchange(
             final = fit(swapped.structure, scales, target, swapped.theta)
             added[added.index(named)] = other
             steps = _regrow(base, final, added, scales, target)
+            break  # not back again in the same pass
     return final, steps
 
 
@@ -507,7 +513,9 @@ def _file_target(record: MotionData, reconstruction: Reconstruction, noisy: bool
     """The target of the written file's fit under ``reconstruction``: every sample but the
     filters' edges, counted plainly."""
     target, scales = prepare(record, reconstruction, noisy)
-    return dataclasses.replace(target, weight=_every_sample(record.t.size), scale=None), scales
+    weight = _every_sample(record.t.size)
+    stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
+    return dataclasses.replace(target, weight=weight, scale=None, stride=stride), scales
 
 
 def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> tuple[Target, Scales]:
