@@ -283,9 +283,7 @@ def _prune(
         options = []
         for effect in added:
             structure = final.structure.without(effect)
-            theta = {name: value for name, value in final.theta.items() if name in structure.names()
-                     or name in structure.share_names(scales.deltas.size)}  # fmt: skip
-            options.append((effect, fit(structure, scales, target, theta, SCREEN)))
+            options.append((effect, fit(structure, scales, target, _held(final, structure, scales), SCREEN)))
         effect, reduced = min(options, key=lambda option: option[1].mse)
         if _significant(reduced, final, target, settings.significance * unit, settings):
             break
@@ -319,9 +317,7 @@ def _exchange(
             if named not in added or final.structure.has(other):
                 continue
             structure = final.structure.without(named).with_effect(other)
-            theta = {name: value for name, value in final.theta.items() if name in structure.names()
-                     or name in structure.share_names(scales.deltas.size)}  # fmt: skip
-            swapped = fit(structure, scales, target, theta, SCREEN)
+            swapped = fit(structure, scales, target, _held(final, structure, scales), SCREEN)
             if not _significant(final, swapped, target, settings.significance * unit, settings):
                 continue
             say(f"{other} in place of {named}: gains {(final.mse - swapped.mse) / unit:.2f} units")
@@ -330,6 +326,12 @@ def _exchange(
             steps = _regrow(base, final, added, scales, target)
             break  # not back again in the same pass
     return final, steps
+
+
+def _held(fitted: Fitted, structure: Structure, scales: Scales) -> dict[str, float]:
+    """``fitted``'s θ for the names ``structure`` keeps: where a changed structure starts."""
+    names = set(structure.names() + structure.share_names(scales.deltas.size))
+    return {name: value for name, value in fitted.theta.items() if name in names}
 
 
 def _regrow(base: Fitted, final: Fitted, added: list[str], scales: Scales, target: Target) -> list[Step]:
