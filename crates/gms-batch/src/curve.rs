@@ -13,7 +13,7 @@ pub(crate) struct Curve {
     fs: f64,
     fc_neg: f64,
     fs_neg: f64,
-    /// 1/Vs, as gms-core computes it.
+    /// 1/Vs, gms-core's.
     inverse_vs: f64,
     delta: Power,
     negligible: f64,
@@ -27,7 +27,7 @@ impl Curve {
             fs: stribeck.fs(),
             fc_neg: stribeck.fc_neg(),
             fs_neg: stribeck.fs_neg(),
-            inverse_vs: 1.0 / stribeck.vs(),
+            inverse_vs: stribeck.inverse_vs(),
             delta: stribeck.delta_power(),
             negligible: stribeck.negligible_above(1.0),
             negligible_neg: stribeck.negligible_above(-1.0),

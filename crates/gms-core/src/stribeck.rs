@@ -91,6 +91,10 @@ impl Stribeck {
     pub fn vs(&self) -> f64 {
         self.vs
     }
+    /// 1/Vs, the factor [`g`](Self::g) scales the velocity by.
+    pub fn inverse_vs(&self) -> f64 {
+        self.inverse_vs
+    }
     /// Stribeck shape exponent δ.
     pub fn delta(&self) -> f64 {
         self.delta.exponent()

@@ -138,27 +138,27 @@ def settle(
     return fitted, []
 
 
+def _neutral_model(structure: Structure, fixed: dict[str, float]) -> tuple[Structure, dict[str, float]]:
+    """The structure and the fixed values that hold the parameters of ``fixed`` at their neutral
+    values: an undetermined −x level makes the model symmetric (without ``asymmetry``, so
+    without any of :data:`MINUS_X`) instead of fixing a number."""
+    if "Fc_neg" not in fixed:
+        return structure, fixed
+    return structure.without("asymmetry"), {name: fixed[name] for name in fixed if name not in MINUS_X}
+
+
 def _fixed(
     fitted: Fitted, found: list[Undetermined], refit: Callable[[Structure, dict[str, float]], Fitted]
 ) -> Fitted:
-    fixed = {item.name: item.kept for item in found}
-    structure = fitted.structure
-    if "Fc_neg" in fixed:
-        structure = structure.without("asymmetry")
-        fixed = {name: value for name, value in fixed.items() if name not in MINUS_X}
-    return refit(structure, fixed)
+    return refit(*_neutral_model(fitted.structure, {item.name: item.kept for item in found}))
 
 
 def _cost(fitted: Fitted, item: Undetermined, scales: Scales, target: Target) -> float:
     """What fixing ``item`` alone at its neutral value, the rest as fitted, adds to the mean
     squared error."""
-    theta = dict(fitted.theta)
-    theta[item.name] = item.kept
-    if item.name == "Fc_neg":  # made symmetric: the −x levels the +x ones
-        for minus, plus in (("Fs_neg_rise", "Fs_rise"), ("sigma2_neg", "sigma2")):
-            if minus in theta:
-                theta[minus] = theta.get(plus, 0.0)
-    force = evaluate(fitted.structure, scales, theta, target.motion, target.tau, None).force
+    structure, fixed = _neutral_model(fitted.structure, {item.name: item.kept})
+    theta = {**fitted.theta, **fixed}
+    force = evaluate(structure, scales, theta, target.motion, target.tau, None).force
     return target.mse(force) - fitted.mse
 
 
