@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import leuven_rt as lr
 from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
+from leuven_rt.fitting.settings import Settings
 from leuven_rt.fitting.solve import fit
 from leuven_rt.fitting.structure import Structure
 
@@ -43,3 +45,39 @@ def test_a_bank_found_only_from_a_spread_start_is_found() -> None:
     # The candidate starts with the weight spread evenly over the bank (structure.start).
     found = select._extend(base, "presliding_hysteresis", scales, target, select.SCREEN)
     assert found.mse < 1.1 * NOISE**2 < 0.7 * base.mse
+
+
+RIPPLE_PERIOD = 0.05
+
+
+def position_ripple() -> MotionData:
+    """Coulomb and viscous friction and a force that repeats every 0.05 rad of the joint angle
+    (a gear's mesh), along sweeps of a 0.6 rad stroke, white force noise."""
+    dt = 0.004
+    t = np.arange(8000) * dt
+    x = 0.3 * (1.0 - np.cos(2 * np.pi * t / 8.0)) + 0.02 * np.sin(2 * np.pi * t / 1.3)
+    v = np.diff(x, prepend=x[0]) / dt
+    truth = lr.Params(Fc=1.0, Fs=1.0, Vs=0.01, delta=2.0, n=2.0, sigma2=0.5, W=[2.0], Delta=[1e-9])
+    ripple = 0.3 * np.sin(2 * np.pi * x / RIPPLE_PERIOD)
+    f = lr.simulate(truth, v, dt) + ripple + np.random.default_rng(5).normal(0.0, NOISE, t.size)
+    return MotionData(t, x, f)
+
+
+def test_a_position_dependence_about_to_be_taken_out_is_found_anew() -> None:
+    record = position_ripple()
+    noisy = noisy_position(record.x, record.dt)
+    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
+    structure = Structure(frozenset({"coulomb", "viscous"}))
+    base = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 0.5})
+    # A period found in an earlier model's residual, off the one the force repeats with: the term
+    # gains little, and taken out as it stands, the position dependence would be lost.
+    stale = fit(structure.with_effect("position_dependence", form="force", periods=(0.0731,)), scales, target,
+                base.theta)  # fmt: skip
+    assert base.mse - stale.mse < 0.5 * NOISE**2
+    steps = [select.Step("position_dependence", base, stale)]
+    final, kept = select._prune(base, stale, steps, scales, target, Settings(), NOISE**2, lambda _: None)
+    assert final.structure.has("position_dependence")
+    assert final.structure.periods[0] == pytest.approx(RIPPLE_PERIOD, rel=0.03)
+    assert [step.effect for step in kept] == ["position_dependence"]
+    assert kept[-1].after is final
+    assert final.mse < 1.2 * NOISE**2

@@ -60,6 +60,9 @@ FILTERS = (0.2, 0.05)
 #: Effects that can stand in for each other: an offset and a −x level of its own both shift the
 #: level of one direction of motion against the other's.
 STAND_INS = (("offset", "asymmetry"),)
+#: Effects whose shape is found in what the current model leaves (the position dependence's form
+#: and ripple period): before the backward round takes one out, it is found anew.
+REFOUND = ("position_dependence",)
 #: Errors are counted robustly at this many times the noise (the forward rounds' noise, at or
 #: below the noise): Cauchy's loss, which is the squared error up to about that scale.
 ROBUST = 5.0
@@ -276,9 +279,15 @@ def _prune(
     say: Progress,
 ) -> tuple[Fitted, list[Step]]:
     """``final`` without every added effect that its removal costs less than the threshold, one
-    at a time, the least useful first; and the steps that add the remaining ones in their order."""
+    at a time, the least useful first; and the steps that add the remaining ones in their order.
+
+    A position dependence about to be taken out is first found anew (:data:`REFOUND`): its form
+    and ripple period were chosen in what the model left when it was added, and the effects added
+    after it change that residual. When the fresh one counts on the model without it, it takes
+    the old one's place instead."""
     added = [step.effect for step in steps]
-    pruned = False
+    changed = False
+    refound: set[str] = set()
     while added:
         options = []
         for effect in added:
@@ -287,13 +296,28 @@ def _prune(
         effect, reduced = min(options, key=lambda option: option[1].mse)
         if _significant(reduced, final, target, settings.significance * unit, settings):
             break
+        threshold = settings.significance * unit
+        if effect in REFOUND and effect not in refound:
+            refound.add(effect)
+            fresh = _extend(reduced, effect, scales, target, SCREEN)
+            if fresh is not None and _significant(reduced, fresh, target, threshold, settings):
+                gain = (reduced.mse - fresh.mse) / unit
+                say(f"{effect} found anew ({_form(fresh.structure)}): gains {gain:.2f} units")
+                final = fit(fresh.structure, scales, target, fresh.theta)
+                changed = True
+                continue
         say(f"taken out again: {effect} (gains only {(reduced.mse - final.mse) / unit:.2f} units)")
         final = fit(reduced.structure, scales, target, reduced.theta)
         added.remove(effect)
-        pruned = True
-    if not pruned:
+        changed = True
+    if not changed:
         return final, steps
     return final, _regrow(base, final, added, scales, target)
+
+
+def _form(structure: Structure) -> str:
+    periods = ", ".join(f"{period:.4g}" for period in structure.periods)
+    return f"form {structure.form}, periods [{periods}]"
 
 
 def _exchange(
