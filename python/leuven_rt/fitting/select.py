@@ -189,8 +189,7 @@ def _select_on(
     target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
-    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
-    drift = _significant(final, drifting, target, settings.drift * unit, settings)
+    drift = _drifting(final, tried, scales, target, settings, unit)
     without = final
     if drift:
         say("a drift of the level: selecting again with it fitted alongside")
@@ -326,6 +325,40 @@ def _exchange(
             steps = _regrow(base, final, added, scales, target)
             break  # not back again in the same pass
     return final, steps
+
+
+def _drifting(
+    final: Fitted,
+    tried: list[tuple[str, float]],
+    scales: Scales,
+    target: Target,
+    settings: Settings,
+    unit: float,
+) -> bool:
+    """Whether a drift of the level counts beside ``final``: alone, or beside an effect of the
+    last round that gained more than the threshold but not evenly over time (``tried``: the last
+    round's candidates and their gains in units). A level that drifts makes an effect's gain
+    uneven in time (it helps where the drift is small and harms where it is large), so neither
+    the effect nor the drift counts alone; the drift counts when, fitted beside that effect, it
+    gains ``drift`` units over the effect alone, one-sided, and the two together gain over
+    ``final``."""
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    if _significant(final, drifting, target, settings.drift * unit, settings):
+        return True
+    for effect, gain in tried:
+        if not gain > settings.significance or final.structure.has(effect):
+            continue
+        candidate = _extend(final, effect, scales, target, SCREEN)
+        if candidate is None or _significant(
+            final, candidate, target, settings.significance * unit, settings
+        ):
+            continue
+        both = fit(candidate.structure.with_drift(), scales, target, candidate.theta, SCREEN)
+        if _significant(candidate, both, target, settings.drift * unit, settings) and _significant(
+            final, both, target, (settings.drift + settings.significance) * unit, settings
+        ):
+            return True
+    return False
 
 
 def _held(fitted: Fitted, structure: Structure, scales: Scales) -> dict[str, float]:
