@@ -583,7 +583,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
     low = min(max(float(np.percentile(speeds, 1)), 1e-3 * high), 0.5 * high)
     force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
     stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
-    lowest = max(3.0 * step, 1e-5 * stroke)
+    lowest = max(3.0 * step if reconstruction.source == "position" else 0.0, 1e-5 * stroke)
     highest = max(min(0.02 * stroke, 0.5 * median_excursion(record.x)), 30.0 * lowest)
     grid = np.geomspace(lowest, highest, ELEMENTS)
     # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
