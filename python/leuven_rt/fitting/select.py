@@ -33,6 +33,7 @@ from ..data.reconstruction import (
     noisy_position,
     reconstruct,
     resolution,
+    resting_samples,
 )
 from ..data.records import MotionData
 from ..data.signals import residual_noise
@@ -137,7 +138,7 @@ def select(
     residual = target.force - run.final.force
     gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
     final, without, floor = run.final, run.without, run.floor
-    if reconstruction.source == "position":
+    if reconstruction.source == "position" or np.any(target.judged & (target.weight == 0)):
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
     file = choose_reconstruction(record, without, noisy, sample)
@@ -565,6 +566,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
         # noise spans counts has no such window (its low-pass is the motion), and its reversals
         # are where presliding shows.
         weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
+    if reconstruction.source == "velocity" and record.v is not None:
+        # At a stop the force is what holds the axis there (in a closed loop, the controller's),
+        # and the model holds its state: what the force does there tells nothing of an effect.
+        weight[resting_samples(record.x, record.v, record.dt)] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
