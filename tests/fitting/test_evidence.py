@@ -12,11 +12,15 @@ from leuven_rt.data.reconstruction import (
     median_excursion,
     noisy_position,
     resolution,
+    resting_samples,
     reversals,
     travel_since_reversal,
 )
+from leuven_rt.data.records import MotionData
 from leuven_rt.data.signals import residual_noise
+from leuven_rt.fitting import select
 from leuven_rt.fitting.remains import functions, remains
+from leuven_rt.modelfile import Reconstruction
 
 
 def coloured(samples: int, cutoff: float, dt: float, seed: int) -> np.ndarray:
@@ -130,3 +134,33 @@ def test_a_servo_dithering_by_a_count_keeps_the_travel_of_its_strokes() -> None:
     assert median_excursion(encoder) == pytest.approx(2e-3, rel=0.01)
     clean = np.floor(x / step) * step
     assert median_excursion(clean) == pytest.approx(2e-3, rel=0.01)
+
+
+def stop_and_creep() -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:
+    """A 1 µm encoder at 1 kHz: sliding, a stop of 200 samples held by a force that wanders (a
+    controller's integrator), then a creep at a quarter of a count a sample, then sliding."""
+    dt, step = 1e-3, 1e-6
+    v = np.concatenate(
+        [np.full(300, 2e-3), np.zeros(200), np.full(400, 0.25 * step / dt), np.full(300, -2e-3)]
+    )
+    x = np.round(np.cumsum(v) * dt / step) * step
+    f = np.sign(v) + np.concatenate([np.zeros(300), np.linspace(0.0, 0.8, 200), np.zeros(700)])
+    return x, v, f, dt, step
+
+
+def test_a_stop_is_at_rest_and_a_creep_between_counts_is_not() -> None:
+    x, v, _, dt, _ = stop_and_creep()
+    rest = resting_samples(x, v, dt)
+    assert rest[301:500].all()
+    assert not rest[500:900].any()
+    assert not rest[:300].any() and not rest[900:].any()
+
+
+def test_the_rounds_weigh_out_a_stop_only_where_a_velocity_drives_the_model() -> None:
+    x, v, f, dt, _ = stop_and_creep()
+    record = MotionData(np.arange(x.size) * dt, x, f, v=v)
+    by_velocity = select.prepare(record, Reconstruction("velocity"), False)[0]
+    assert not np.any(by_velocity.weight[301:500])
+    assert np.all(by_velocity.weight[500:880] > 0)
+    by_encoder = select.prepare(record, Reconstruction("position"), False)[0]
+    assert np.all(by_encoder.weight[340:480] > 0)

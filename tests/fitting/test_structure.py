@@ -7,7 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from leuven_rt.data.records import MotionData
 from leuven_rt.errors import InputError
+from leuven_rt.fitting import select
 from leuven_rt.fitting.structure import (
     CATALOGUE,
     FRICTION,
@@ -18,6 +20,7 @@ from leuven_rt.fitting.structure import (
     start,
     unpack,
 )
+from leuven_rt.modelfile import Reconstruction
 
 SCALES = Scales(speed_low=1e-4, speed_high=0.1, force=2.0, stiff=1e-10, grid=np.geomspace(1e-7, 1e-4, 6),
                 middle=0.05, half_stroke=0.05)  # fmt: skip
@@ -99,3 +102,18 @@ def test_effect_names_are_checked() -> None:
         parse_effects("coulomb,magic")
     with pytest.raises(InputError, match="repeats"):
         parse_effects(["coulomb", "coulomb"])
+
+
+def test_the_bank_reaches_below_the_encoder_step_only_where_a_velocity_drives_it() -> None:
+    """A logged velocity resolves travel below the encoder's step, so the bank's narrowest
+    element may be narrower than 3 steps; driven by the encoder, it may not."""
+    dt = 1e-3
+    t = np.arange(20_000) * dt
+    v = 0.05 * np.cos(2 * np.pi * t / 4.0)
+    step = 2 * np.pi / 2**17
+    x = np.round(np.cumsum(v) * dt / step) * step
+    f = np.sign(v) + np.random.default_rng(0).normal(0.0, 0.01, t.size)
+    record = MotionData(t, x, f, v=v)
+    by_velocity = select.prepare(record, Reconstruction("velocity"), False)[1]
+    by_encoder = select.prepare(record, Reconstruction("position"), False)[1]
+    assert by_velocity.grid[0] < step < 2.9 * step < by_encoder.grid[0]

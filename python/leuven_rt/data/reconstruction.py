@@ -135,6 +135,29 @@ def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
     return out
 
 
+#: A run of at least this many samples at rest is a stop (shorter ones are slow motion between
+#: counts).
+REST_RUN = 5
+#: At rest, a logged velocity moves the axis by less than this share of an encoder step a sample.
+REST_SHARE = 1e-3
+
+
+def resting_samples(x: FloatArray, v: FloatArray, dt: float) -> NDArray[np.bool_]:
+    """Samples where a log with a velocity column shows the axis at rest: runs of at least
+    :data:`REST_RUN` samples where the encoder does not count and the velocity moves it by less
+    than :data:`REST_SHARE` of a step per sample. Held there (a mass stuck in a closed loop), the
+    force is whatever the drive applies, which no model driven by the motion can follow."""
+    step = resolution(x)
+    still = np.zeros(x.size, dtype=bool)
+    still[1:] = (np.diff(x) == 0) & (np.abs(v[1:]) * dt < REST_SHARE * step)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], still.astype(np.int8), [0]))))
+    out = np.zeros(x.size, dtype=bool)
+    for begin, end in zip(edges[::2], edges[1::2], strict=True):
+        if end - begin >= REST_RUN:
+            out[begin:end] = True
+    return out
+
+
 def reversals(x: FloatArray) -> int:
     """How many times the encoder's counts change direction."""
     steps = np.diff(x)

@@ -33,6 +33,7 @@ from ..data.reconstruction import (
     noisy_position,
     reconstruct,
     resolution,
+    resting_samples,
 )
 from ..data.records import MotionData
 from ..data.signals import residual_noise
@@ -140,7 +141,7 @@ def select(
     residual = target.force - run.final.force
     gross = (target.weight > 0) & (np.abs(residual) > OUTLIER * run.noise)
     final, without, floor = run.final, run.without, run.floor
-    if reconstruction.source == "position":
+    if reconstruction.source == "position" or np.any(target.judged & (target.weight == 0)):
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
     file = choose_reconstruction(record, without, noisy, sample)
@@ -192,8 +193,7 @@ def _select_on(
     target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
-    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
-    drift = _significant(final, drifting, target, settings.drift * unit, settings)
+    drift = _drifting(final, tried, scales, target, settings, unit)
     without = final
     if drift:
         say("a drift of the level: selecting again with it fitted alongside")
@@ -350,6 +350,40 @@ def _exchange(
             steps = _regrow(base, final, added, scales, target)
             break  # not back again in the same pass
     return final, steps
+
+
+def _drifting(
+    final: Fitted,
+    tried: list[tuple[str, float]],
+    scales: Scales,
+    target: Target,
+    settings: Settings,
+    unit: float,
+) -> bool:
+    """Whether a drift of the level counts beside ``final``: alone, or beside an effect of the
+    last round that gained more than the threshold but not evenly over time (``tried``: the last
+    round's candidates and their gains in units). A level that drifts makes an effect's gain
+    uneven in time (it helps where the drift is small and harms where it is large), so neither
+    the effect nor the drift counts alone; the drift counts when, fitted beside that effect, it
+    gains ``drift`` units over the effect alone, one-sided, and the two together gain over
+    ``final``."""
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    if _significant(final, drifting, target, settings.drift * unit, settings):
+        return True
+    for effect, gain in tried:
+        if not gain > settings.significance or final.structure.has(effect):
+            continue
+        candidate = _extend(final, effect, scales, target, SCREEN)
+        if candidate is None or _significant(
+            final, candidate, target, settings.significance * unit, settings
+        ):
+            continue
+        both = fit(candidate.structure.with_drift(), scales, target, candidate.theta, SCREEN)
+        if _significant(candidate, both, target, settings.drift * unit, settings) and _significant(
+            final, both, target, (settings.drift + settings.significance) * unit, settings
+        ):
+            return True
+    return False
 
 
 def _held(fitted: Fitted, structure: Structure, scales: Scales) -> dict[str, float]:
@@ -556,6 +590,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
         # noise spans counts has no such window (its low-pass is the motion), and its reversals
         # are where presliding shows.
         weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
+    if reconstruction.source == "velocity" and record.v is not None:
+        # At a stop the force is what holds the axis there (in a closed loop, the controller's),
+        # and the model holds its state: what the force does there tells nothing of an effect.
+        weight[resting_samples(record.x, record.v, record.dt)] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
@@ -574,7 +612,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
     low = min(max(float(np.percentile(speeds, 1)), 1e-3 * high), 0.5 * high)
     force_scale = float(np.std(record.f)) or float(np.max(np.abs(record.f))) or 1.0
     stiff = 1e-4 * step if reconstruction.source == "position" and step > 0 else 1e-9 * stroke
-    lowest = max(3.0 * step, 1e-5 * stroke)
+    lowest = max(3.0 * step if reconstruction.source == "position" else 0.0, 1e-5 * stroke)
     highest = max(min(0.02 * stroke, 0.5 * median_excursion(record.x)), 30.0 * lowest)
     grid = np.geomspace(lowest, highest, ELEMENTS)
     # The bank holds the stiff element beside the widest one: gms-core resolves z only to rounding
