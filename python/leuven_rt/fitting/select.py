@@ -189,7 +189,9 @@ def _select_on(
     target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
-    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    # Screened like a candidate: only the decision is kept (with a drift the rounds run again
+    # from the baseline), and a drift gains what it gains within the first few iterations.
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta, SCREEN)
     drift = _significant(final, drifting, target, settings.drift * unit, settings)
     without = final
     if drift:
