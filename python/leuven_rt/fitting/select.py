@@ -366,8 +366,10 @@ def _drifting(
     uneven in time (it helps where the drift is small and harms where it is large), so neither
     the effect nor the drift counts alone; the drift counts when, fitted beside that effect, it
     gains ``drift`` units over the effect alone, one-sided, and the two together gain over
-    ``final``."""
-    drifting = fit(final.structure.with_drift(), scales, target, final.theta)
+    ``final``. Each fit is screened like a candidate: only the decision is kept (with a drift
+    the rounds run again from the baseline), and a drift gains what it gains within the first
+    few iterations."""
+    drifting = fit(final.structure.with_drift(), scales, target, final.theta, SCREEN)
     if _significant(final, drifting, target, settings.drift * unit, settings):
         return True
     for effect, gain in tried:

@@ -134,9 +134,12 @@ def fit(
     shares = [i for i, name in enumerate(names) if name.startswith("share_")]
     scale_row = math.sqrt(float(rows.sum())) * 0.1
     every_free = len(free) == len(every)
-    cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+    cache: dict[bytes, tuple[FloatArray, FloatArray, Evaluation | None]] = {}
+    # The force of the last point whose Jacobian the solver asked for, which is the last it
+    # accepted: the point it returns, whose force is then not simulated again.
+    accepted: dict[bytes, Evaluation | None] = {}
 
-    def both(x: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def both(x: FloatArray) -> tuple[FloatArray, FloatArray, Evaluation | None]:
         key = x.tobytes()
         if key not in cache:
             cache.clear()
@@ -145,7 +148,7 @@ def fit(
             except ParameterError:
                 # Outside the model's rules (a level's factor reaching 0): a large, flat residual.
                 worst = np.full(rows.sum() + bool(shares), 10.0)
-                cache[key] = (worst, np.zeros((worst.size, len(names))))
+                cache[key] = (worst, np.zeros((worst.size, len(names))), None)
                 return cache[key]
             assert result.jacobian is not None
             count = row_scale.size
@@ -160,7 +163,7 @@ def fit(
                 residual[count] = scale_row * (x[shares].sum() - 1.0)
                 jac[count] = 0.0
                 jac[count, shares] = scale_row
-            cache[key] = (residual, jac)
+            cache[key] = (residual, jac, Evaluation(result.values, result.force, None))
         return cache[key]
 
     if not names:
@@ -175,14 +178,19 @@ def fit(
         return both(x)[0]
 
     def jacobian(x: FloatArray) -> FloatArray:
-        return both(x)[1]
+        _, jac, evaluation = both(x)
+        accepted.clear()
+        accepted[x.tobytes()] = evaluation
+        return jac
 
     result = least_squares(residual, x0, jac=jacobian, bounds=(low, high),
                            x_scale="jac", max_nfev=iterations, method="trf", ftol=1e-10, xtol=1e-10,
                            gtol=1e-10, **robustly)  # fmt: skip
     theta = full(result.x)
-    final = evaluate(structure, scales, theta, target.motion, target.tau, None)
-    return Fitted(structure, theta, final, target.mse(final.force), int(result.nfev))
+    simulated = accepted.get(result.x.tobytes())
+    if simulated is None:
+        simulated = evaluate(structure, scales, theta, target.motion, target.tau, None)
+    return Fitted(structure, theta, simulated, target.mse(simulated.force), int(result.nfev))
 
 
 __all__ = ["ITERATIONS", "Fitted", "Target", "fit"]
