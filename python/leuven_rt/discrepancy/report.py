@@ -115,7 +115,8 @@ class Diagnosis:
             *(
                 [
                     f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors "
-                    "the model cannot explain (beyond 5 times the noise); the fit leaves them out"
+                    "the model cannot explain (beyond 5 times the noise); choosing the effects counts them "
+                    "little, the written file is fitted on every sample"
                 ]
                 if self.gross_errors
                 else []
