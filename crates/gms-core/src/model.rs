@@ -192,7 +192,13 @@ impl<H: Hysteresis> Params<H> {
 
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
-        let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);
+        self.derivative(self.hysteresis.force(&state.memory, z), v)
+    }
+
+    /// f(z, v) given Fh(z) (`force`).
+    #[inline(always)]
+    fn derivative(&self, force: f64, v: f64) -> f64 {
+        let u = force / self.stribeck.g(v);
         v - libm::fabs(v) * libm::copysign(self.n.abs(u), u)
     }
 
@@ -244,9 +250,10 @@ impl<H: Hysteresis> Params<H> {
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear(state, v, dt, stiffness, out, |force, _| Ok(force));
         }
+        let mut at_z = self.force_at(state);
         per_scheme!(scheme, |scheme| {
             run_block(state, v, out, |state, v| {
-                self.advance(state, v, dt, inverse_dt, scheme)
+                self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)
             })
         })
     }
@@ -266,9 +273,10 @@ impl<H: Hysteresis> Params<H> {
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear_position(state, x, dt, stiffness, out, |force, _, _| Ok(force));
         }
+        let mut at_z = self.force_at(state);
         per_scheme!(scheme, |scheme| {
             run_block(state, x, out, |state, x| {
-                self.advance_position(state, x, dt, inverse_dt, scheme)
+                self.advance_position_from::<true>(state, x, dt, inverse_dt, scheme, &mut at_z)
             })
         })
     }
@@ -299,6 +307,7 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         // The terms depend on the position alone: a chunk's are evaluated ahead of stepping it.
+        let mut at_z = self.force_at(state);
         per_scheme!(scheme, |scheme| {
             run_ahead(
                 state,
@@ -307,7 +316,8 @@ impl<H: Hysteresis> Params<H> {
                 |_, x, terms| position_terms(level, position_force, x, terms),
                 |state, x, terms| {
                     let v = position_velocity(state, x, dt)?;
-                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                    let force =
+                        self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)?;
                     state.last_position = Some(x);
                     // run_ahead puts the state back on this error, like on any other.
                     self.with_terms(force, v, terms, level, position_force)
@@ -357,6 +367,7 @@ impl<H: Hysteresis> Params<H> {
                 self.at_position(force, x, v, level, position_force)
             });
         }
+        let mut at_z = self.force_at(state);
         per_scheme!(scheme, |scheme| {
             // The chunks of x are those of v (the lengths are equal), their terms evaluated
             // ahead of stepping them.
@@ -370,7 +381,8 @@ impl<H: Hysteresis> Params<H> {
                     position_terms(level, position_force, x, terms);
                 },
                 |state, v, terms| {
-                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                    let force =
+                        self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)?;
                     self.with_terms(force, v, terms, level, position_force)
                 },
             )
@@ -429,8 +441,10 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         let mut deflections = z.iter_mut();
+        let mut at_z = self.force_at(state);
         run_block(state, x, out, |state, x| {
-            let force = self.advance_position(state, x, dt, inverse_dt, scheme)?;
+            let force =
+                self.advance_position_from::<true>(state, x, dt, inverse_dt, scheme, &mut at_z)?;
             if let Some(slot) = deflections.next() {
                 *slot = state.z;
             }
@@ -499,7 +513,7 @@ impl<H: Hysteresis> Params<H> {
             },
             |state, v, factor| {
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, inverse_dt, z_next)?;
+                let force = self.advance_to::<false>(state, v, inverse_dt, z_next, &mut 0.0)?;
                 then(force, v)
             },
         )
@@ -535,22 +549,12 @@ impl<H: Hysteresis> Params<H> {
             |state, x, (v, factor)| {
                 let v = finite_velocity(v)?;
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, inverse_dt, z_next)?;
+                let force = self.advance_to::<false>(state, v, inverse_dt, z_next, &mut 0.0)?;
                 state.last_position = Some(x);
                 // run_ahead puts the state back on this error, like on any other.
                 then(force, x, v)
             },
         )
-    }
-
-    /// z⁺ of the implicit step: [`Params::solve_implicit`]'s root, with the closed form inlined
-    /// into the block calls' loops.
-    #[inline(always)]
-    fn implicit_z(&self, state: &State<H::Memory>, v: f64, dt: f64) -> f64 {
-        match self.linear_root(state, v, dt) {
-            Some(z) => z,
-            None => self.residual(state, v, dt).solve().z,
-        }
     }
 
     /// R(y) of the implicit step from this state (zero at the step's solution).
@@ -592,23 +596,60 @@ impl<H: Hysteresis> Params<H> {
         inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
+        self.advance_from::<false>(state, v, dt, inverse_dt, scheme, &mut 0.0)
+    }
+
+    /// [`Params::advance`] with Fh(z) at step start handed over when `CARRY`: `at_z` holds it on
+    /// entry and, after a step that succeeded, Fh(z⁺) from the moved memory, which the next step
+    /// starts from ([`Hysteresis::commit_force`]). The block calls carry it from step to step,
+    /// which saves a pass over the elements per step; without `CARRY` it is evaluated here and
+    /// `at_z` is neither read nor written. The same values either way, bit for bit.
+    #[inline(always)]
+    fn advance_from<const CARRY: bool>(
+        &self,
+        state: &mut State<H::Memory>,
+        v: f64,
+        dt: f64,
+        inverse_dt: f64,
+        scheme: Scheme,
+        at_z: &mut f64,
+    ) -> Result<f64, Error> {
         let z = state.z;
-        let z_next = match scheme {
-            Scheme::Implicit => self.implicit_z(state, v, dt),
-            Scheme::Explicit => z + dt * self.state_derivative(state, z, v),
+        let force_at_z = |state: &State<H::Memory>| {
+            if CARRY {
+                *at_z
+            } else {
+                self.hysteresis.force(&state.memory, z)
+            }
         };
-        self.advance_to(state, v, inverse_dt, z_next)
+        let z_next = match scheme {
+            Scheme::Implicit => match self.linear_root(state, v, dt) {
+                Some(z_next) => z_next,
+                None => self.residual(state, v, dt).solve_from(force_at_z(state)).z,
+            },
+            Scheme::Explicit => z + dt * self.derivative(force_at_z(state), v),
+        };
+        self.advance_to::<CARRY>(state, v, inverse_dt, z_next, at_z)
+    }
+
+    /// Fh(z) at the start of a block call's first step, for [`Params::advance_from`]: evaluated
+    /// only where a step uses it (not by the closed form of [`Params::closed_form`]).
+    #[inline(always)]
+    fn force_at(&self, state: &State<H::Memory>) -> f64 {
+        self.hysteresis.force(&state.memory, state.z)
     }
 
     /// The step to the new deflection `z_next` (refused if not finite): the force and the
     /// commit of [`Params::advance`].
+    /// With `CARRY`, also writes Fh(z⁺) from the moved memory into `at_z` ([`Params::advance_from`]).
     #[inline(always)]
-    fn advance_to(
+    fn advance_to<const CARRY: bool>(
         &self,
         state: &mut State<H::Memory>,
         v: f64,
         inverse_dt: f64,
         z_next: f64,
+        at_z: &mut f64,
     ) -> Result<f64, Error> {
         let z = state.z;
         if !z_next.is_finite() {
@@ -618,34 +659,50 @@ impl<H: Hysteresis> Params<H> {
         let viscous = self.sigma2_at(v) * v;
         let bound =
             self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
-        let force = if bound < 0.5 * f64::MAX {
-            self.hysteresis.commit(&mut state.memory, z_next) + micro_viscous + viscous
+        let hysteresis = if bound < 0.5 * f64::MAX {
+            if CARRY {
+                let (committed, next) = self.hysteresis.commit_force(&mut state.memory, z_next);
+                *at_z = next;
+                committed
+            } else {
+                self.hysteresis.commit(&mut state.memory, z_next)
+            }
         } else {
-            self.commit_copy(&mut state.memory, z_next, micro_viscous, viscous)?
+            let (committed, next) =
+                self.commit_copy::<CARRY>(&mut state.memory, z_next, micro_viscous, viscous)?;
+            if CARRY {
+                *at_z = next;
+            }
+            committed
         };
         state.z = z_next;
-        Ok(force)
+        Ok(hysteresis + micro_viscous + viscous)
     }
 
     /// The commit of a step whose force may not be finite: into a copy of the memory, stored
     /// back only if the force is finite. Out of line, so that the in-place path keeps its own
     /// inlined commit.
+    /// Returns Fh(z⁺) as committed and, with `CARRY`, Fh(z⁺) from the moved memory (else NaN).
     #[cold]
     #[inline(never)]
-    fn commit_copy(
+    fn commit_copy<const CARRY: bool>(
         &self,
         memory: &mut H::Memory,
         z_next: f64,
         micro_viscous: f64,
         viscous: f64,
-    ) -> Result<f64, Error> {
+    ) -> Result<(f64, f64), Error> {
         let mut copy = *memory;
-        let force = self.hysteresis.commit(&mut copy, z_next) + micro_viscous + viscous;
-        if !force.is_finite() {
+        let (committed, next) = if CARRY {
+            self.hysteresis.commit_force(&mut copy, z_next)
+        } else {
+            (self.hysteresis.commit(&mut copy, z_next), f64::NAN)
+        };
+        if !(committed + micro_viscous + viscous).is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
         *memory = copy;
-        Ok(force)
+        Ok((committed, next))
     }
 
     #[inline(always)]
@@ -657,8 +714,22 @@ impl<H: Hysteresis> Params<H> {
         inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
+        self.advance_position_from::<false>(state, x, dt, inverse_dt, scheme, &mut 0.0)
+    }
+
+    /// [`Params::advance_position`] with Fh(z) handed over as in [`Params::advance_from`].
+    #[inline(always)]
+    fn advance_position_from<const CARRY: bool>(
+        &self,
+        state: &mut State<H::Memory>,
+        x: f64,
+        dt: f64,
+        inverse_dt: f64,
+        scheme: Scheme,
+        at_z: &mut f64,
+    ) -> Result<f64, Error> {
         let v = position_velocity(state, x, dt)?;
-        let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+        let force = self.advance_from::<CARRY>(state, v, dt, inverse_dt, scheme, at_z)?;
         state.last_position = Some(x);
         Ok(force)
     }
