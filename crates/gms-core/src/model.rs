@@ -36,6 +36,33 @@ macro_rules! per_scheme {
     };
 }
 
+/// `$body` with `$bound` bound to the exponents (n, n − 1) of `$params` ([`Exponents`]): to
+/// the constants (`Power::Two`, `Power::One`) when n = 2, so that the block call's loop for the
+/// common exponent is compiled with φ(u) = u·|u| and the solver's quadratic, without a test of
+/// n's class in every evaluation of φ; otherwise to the parameters' own.
+macro_rules! per_power {
+    ($params:expr, |$bound:ident| $body:expr) => {
+        if $params.n == Power::Two {
+            let $bound = Exponents {
+                n: Power::Two,
+                n_less_one: Power::One,
+            };
+            $body
+        } else {
+            let $bound = $params.exponents();
+            $body
+        }
+    };
+}
+
+/// The transition exponent n and n − 1 (for the slope of φ in the solver's Newton iteration),
+/// classified: what a step raises to.
+#[derive(Clone, Copy)]
+struct Exponents {
+    n: Power,
+    n_less_one: Power,
+}
+
 /// Samples of a block call whose values that depend on the input alone are computed ahead of
 /// stepping them ([`run_ahead`]), in a buffer on the stack: LuGre's implicit factor
 /// g/(g + dt·|v|·k) (512 bytes; 1 KiB with position input, whose velocities are kept too), and
@@ -192,14 +219,28 @@ impl<H: Hysteresis> Params<H> {
 
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
-        self.derivative(self.hysteresis.force(&state.memory, z), v)
+        Self::derivative(
+            self.hysteresis.force(&state.memory, z),
+            v,
+            self.stribeck.g(v),
+            self.n,
+        )
     }
 
-    /// f(z, v) given Fh(z) (`force`).
+    /// f(z, v) given Fh(z) (`force`) and g(v) (`g`), with n as `n`.
     #[inline(always)]
-    fn derivative(&self, force: f64, v: f64) -> f64 {
-        let u = force / self.stribeck.g(v);
-        v - libm::fabs(v) * libm::copysign(self.n.abs(u), u)
+    fn derivative(force: f64, v: f64, g: f64, n: Power) -> f64 {
+        let u = force / g;
+        v - libm::fabs(v) * libm::copysign(n.abs(u), u)
+    }
+
+    /// n and n − 1, as classified at construction.
+    #[inline(always)]
+    fn exponents(&self) -> Exponents {
+        Exponents {
+            n: self.n,
+            n_less_one: self.n_less_one,
+        }
     }
 
     /// One step with velocity input `v` held over `dt`; returns the friction force.
@@ -251,11 +292,18 @@ impl<H: Hysteresis> Params<H> {
             return self.run_linear(state, v, dt, stiffness, out, |force, _| Ok(force));
         }
         let mut at_z = self.force_at(state);
-        per_scheme!(scheme, |scheme| {
-            run_block(state, v, out, |state, v| {
-                self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)
-            })
-        })
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
+            run_ahead(
+                state,
+                v,
+                out,
+                |_, v, levels| self.levels(v, levels),
+                |state, v, g| {
+                    let step = (v, g, dt, inverse_dt);
+                    self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)
+                },
+            )
+        }))
     }
 
     /// Runs positions `x` through one channel, writing the forces into `out` (same length);
@@ -274,11 +322,23 @@ impl<H: Hysteresis> Params<H> {
             return self.run_linear_position(state, x, dt, stiffness, out, |force, _, _| Ok(force));
         }
         let mut at_z = self.force_at(state);
-        per_scheme!(scheme, |scheme| {
-            run_block(state, x, out, |state, x| {
-                self.advance_position_from::<true>(state, x, dt, inverse_dt, scheme, &mut at_z)
-            })
-        })
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
+            run_ahead(
+                state,
+                x,
+                out,
+                |state, x, values| self.velocities_and_levels(state, x, dt, values),
+                |state, x, (v, g)| {
+                    let v = finite_velocity(v)?;
+                    let step = (v, g, dt, inverse_dt);
+                    let force =
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
+                    state.last_position = Some(x);
+                    // run_ahead puts the state back on this error, like on any other.
+                    Ok(force)
+                },
+            )
+        }))
     }
 
     /// [`Params::simulate_position`] with a position-dependent level and a position force
@@ -308,22 +368,33 @@ impl<H: Hysteresis> Params<H> {
         }
         // The terms depend on the position alone: a chunk's are evaluated ahead of stepping it.
         let mut at_z = self.force_at(state);
-        per_scheme!(scheme, |scheme| {
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
             run_ahead(
                 state,
                 x,
                 out,
-                |_, x, terms| position_terms(level, position_force, x, terms),
-                |state, x, terms| {
-                    let v = position_velocity(state, x, dt)?;
+                |state, x, values| {
+                    let mut steps = [(0.0, 0.0); AHEAD];
+                    self.velocities_and_levels(state, x, dt, &mut steps);
+                    let mut terms = [(0.0, 0.0); AHEAD];
+                    position_terms(level, position_force, x, &mut terms);
+                    for (value, (step, terms)) in
+                        values.iter_mut().zip(steps.into_iter().zip(terms))
+                    {
+                        *value = (step, terms);
+                    }
+                },
+                |state, x, ((v, g), terms)| {
+                    let v = finite_velocity(v)?;
+                    let step = (v, g, dt, inverse_dt);
                     let force =
-                        self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)?;
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
                     state.last_position = Some(x);
                     // run_ahead puts the state back on this error, like on any other.
                     self.with_terms(force, v, terms, level, position_force)
                 },
             )
-        })
+        }))
     }
 
     /// [`Params::simulate`] with a position-dependent level and a position force evaluated at
@@ -368,7 +439,7 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         let mut at_z = self.force_at(state);
-        per_scheme!(scheme, |scheme| {
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
             // The chunks of x are those of v (the lengths are equal), their terms evaluated
             // ahead of stepping them.
             let mut positions = x.chunks(AHEAD);
@@ -376,17 +447,25 @@ impl<H: Hysteresis> Params<H> {
                 state,
                 v,
                 out,
-                |_, _, terms| {
+                |_, v, values| {
                     let x = positions.next().unwrap_or(&[]);
-                    position_terms(level, position_force, x, terms);
+                    let mut levels = [0.0; AHEAD];
+                    self.levels(v, &mut levels);
+                    let mut terms = [(0.0, 0.0); AHEAD];
+                    position_terms(level, position_force, x, &mut terms);
+                    for (value, (g, terms)) in values.iter_mut().zip(levels.into_iter().zip(terms))
+                    {
+                        *value = (g, terms);
+                    }
                 },
-                |state, v, terms| {
+                |state, v, (g, terms)| {
+                    let step = (v, g, dt, inverse_dt);
                     let force =
-                        self.advance_from::<true>(state, v, dt, inverse_dt, scheme, &mut at_z)?;
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
                     self.with_terms(force, v, terms, level, position_force)
                 },
             )
-        })
+        }))
     }
 
     /// [`Params::at_position`] with the terms at the step's position evaluated already
@@ -443,8 +522,11 @@ impl<H: Hysteresis> Params<H> {
         let mut deflections = z.iter_mut();
         let mut at_z = self.force_at(state);
         run_block(state, x, out, |state, x| {
+            let v = position_velocity(state, x, dt)?;
+            let step = (v, self.stribeck.g(v), dt, inverse_dt);
             let force =
-                self.advance_position_from::<true>(state, x, dt, inverse_dt, scheme, &mut at_z)?;
+                self.advance_from::<true>(state, step, scheme, self.exponents(), &mut at_z)?;
+            state.last_position = Some(x);
             if let Some(slot) = deflections.next() {
                 *slot = state.z;
             }
@@ -563,15 +645,29 @@ impl<H: Hysteresis> Params<H> {
     }
 
     fn residual<'a>(&'a self, state: &'a State<H::Memory>, v: f64, dt: f64) -> Residual<'a, H> {
+        self.residual_with(state, v, self.stribeck.g(v), dt, self.exponents())
+    }
+
+    /// [`Params::residual`] with the exponents `exponents` (constants in a block call's loop
+    /// for n = 2, see [`per_power`]).
+    #[inline(always)]
+    fn residual_with<'a>(
+        &'a self,
+        state: &'a State<H::Memory>,
+        v: f64,
+        g: f64,
+        dt: f64,
+        Exponents { n, n_less_one }: Exponents,
+    ) -> Residual<'a, H> {
         Residual {
             hysteresis: &self.hysteresis,
             memory: &state.memory,
             z: state.z,
             dt_v: dt * v,
             dt_abs_v: dt * libm::fabs(v),
-            inverse_g: 1.0 / self.stribeck.g(v),
-            n: self.n,
-            n_less_one: self.n_less_one,
+            inverse_g: 1.0 / g,
+            n,
+            n_less_one,
         }
     }
 
@@ -596,7 +692,8 @@ impl<H: Hysteresis> Params<H> {
         inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
-        self.advance_from::<false>(state, v, dt, inverse_dt, scheme, &mut 0.0)
+        let step = (v, self.stribeck.g(v), dt, inverse_dt);
+        self.advance_from::<false>(state, step, scheme, self.exponents(), &mut 0.0)
     }
 
     /// [`Params::advance`] with Fh(z) at step start handed over when `CARRY`: `at_z` holds it on
@@ -608,10 +705,9 @@ impl<H: Hysteresis> Params<H> {
     fn advance_from<const CARRY: bool>(
         &self,
         state: &mut State<H::Memory>,
-        v: f64,
-        dt: f64,
-        inverse_dt: f64,
+        (v, g, dt, inverse_dt): (f64, f64, f64, f64),
         scheme: Scheme,
+        exponents: Exponents,
         at_z: &mut f64,
     ) -> Result<f64, Error> {
         let z = state.z;
@@ -623,11 +719,15 @@ impl<H: Hysteresis> Params<H> {
             }
         };
         let z_next = match scheme {
-            Scheme::Implicit => match self.linear_root(state, v, dt) {
-                Some(z_next) => z_next,
-                None => self.residual(state, v, dt).solve_from(force_at_z(state)).z,
-            },
-            Scheme::Explicit => z + dt * self.derivative(force_at_z(state), v),
+            Scheme::Implicit => {
+                if let Some(z_next) = self.linear_root(state, v, dt) {
+                    z_next
+                } else {
+                    let residual = self.residual_with(state, v, g, dt, exponents);
+                    residual.solve_from(force_at_z(state)).z
+                }
+            }
+            Scheme::Explicit => z + dt * Self::derivative(force_at_z(state), v, g, exponents.n),
         };
         self.advance_to::<CARRY>(state, v, inverse_dt, z_next, at_z)
     }
@@ -637,6 +737,36 @@ impl<H: Hysteresis> Params<H> {
     #[inline(always)]
     fn force_at(&self, state: &State<H::Memory>) -> f64 {
         self.hysteresis.force(&state.memory, state.z)
+    }
+
+    /// g(v) at each of the velocities `v` (at most [`AHEAD`]) into `levels`: a chunk's are
+    /// computed ahead of stepping it, so that their exponentials overlap instead of each step
+    /// waiting for its own. The same g as a step computes, so the same forces bit for bit.
+    #[inline(always)]
+    fn levels(&self, v: &[f64], levels: &mut [f64; AHEAD]) {
+        for (level, &v) in levels.iter_mut().zip(v) {
+            *level = self.stribeck.g(v);
+        }
+    }
+
+    /// The velocity at each of the positions `x` (at most [`AHEAD`]; as [`position_velocity`]
+    /// computes it, from the state's last position on) and g at it, into `values`, ahead of
+    /// stepping them as in [`Params::levels`]. A non-finite velocity gets a level that is never
+    /// used: the step refuses the velocity.
+    #[inline(always)]
+    fn velocities_and_levels(
+        &self,
+        state: &State<H::Memory>,
+        x: &[f64],
+        dt: f64,
+        values: &mut [(f64, f64); AHEAD],
+    ) {
+        let mut previous = state.last_position;
+        for (value, &x) in values.iter_mut().zip(x) {
+            let v = velocity_between(previous, x, dt);
+            previous = Some(x);
+            *value = (v, self.stribeck.g(v));
+        }
     }
 
     /// The step to the new deflection `z_next` (refused if not finite): the force and the
@@ -714,22 +844,8 @@ impl<H: Hysteresis> Params<H> {
         inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
-        self.advance_position_from::<false>(state, x, dt, inverse_dt, scheme, &mut 0.0)
-    }
-
-    /// [`Params::advance_position`] with Fh(z) handed over as in [`Params::advance_from`].
-    #[inline(always)]
-    fn advance_position_from<const CARRY: bool>(
-        &self,
-        state: &mut State<H::Memory>,
-        x: f64,
-        dt: f64,
-        inverse_dt: f64,
-        scheme: Scheme,
-        at_z: &mut f64,
-    ) -> Result<f64, Error> {
         let v = position_velocity(state, x, dt)?;
-        let force = self.advance_from::<CARRY>(state, v, dt, inverse_dt, scheme, at_z)?;
+        let force = self.advance(state, v, dt, inverse_dt, scheme)?;
         state.last_position = Some(x);
         Ok(force)
     }

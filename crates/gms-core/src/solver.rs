@@ -99,7 +99,8 @@ impl<H: Hysteresis> Residual<'_, H> {
     /// [`Residual::solve`], given Fh(z) at step start (`force`, as
     /// [`Hysteresis::force`] computes it): a block call has it from the previous step's commit
     /// ([`Hysteresis::commit_force`]).
-    #[inline]
+    #[allow(clippy::inline_always)] // see the doc comment
+    #[inline(always)]
     pub fn solve_from(&self, force: f64) -> Solution {
         let mut y = self.z;
         let mut force = force;
