@@ -36,6 +36,33 @@ macro_rules! per_scheme {
     };
 }
 
+/// `$body` with `$bound` bound to the exponents (n, n − 1) of `$params` ([`Exponents`]): to
+/// the constants (`Power::Two`, `Power::One`) when n = 2, so that the block call's loop for the
+/// common exponent is compiled with φ(u) = u·|u| and the solver's quadratic, without a test of
+/// n's class in every evaluation of φ; otherwise to the parameters' own.
+macro_rules! per_power {
+    ($params:expr, |$bound:ident| $body:expr) => {
+        if $params.n == Power::Two {
+            let $bound = Exponents {
+                n: Power::Two,
+                n_less_one: Power::One,
+            };
+            $body
+        } else {
+            let $bound = $params.exponents();
+            $body
+        }
+    };
+}
+
+/// The transition exponent n and n − 1 (for the slope of φ in the solver's Newton iteration),
+/// classified: what a step raises to.
+#[derive(Clone, Copy)]
+struct Exponents {
+    n: Power,
+    n_less_one: Power,
+}
+
 /// Samples of a block call whose values that depend on the input alone are computed ahead of
 /// stepping them ([`run_ahead`]), in a buffer on the stack: LuGre's implicit factor
 /// g/(g + dt·|v|·k) (512 bytes; 1 KiB with position input, whose velocities are kept too), and
@@ -192,8 +219,28 @@ impl<H: Hysteresis> Params<H> {
 
     /// dz/dt = f(z, v) with the hysteresis trial at z from the state's memory.
     pub fn state_derivative(&self, state: &State<H::Memory>, z: f64, v: f64) -> f64 {
-        let u = self.hysteresis.force(&state.memory, z) / self.stribeck.g(v);
-        v - libm::fabs(v) * libm::copysign(self.n.abs(u), u)
+        Self::derivative(
+            self.hysteresis.force(&state.memory, z),
+            v,
+            self.stribeck.g(v),
+            self.n,
+        )
+    }
+
+    /// f(z, v) given Fh(z) (`force`) and g(v) (`g`), with n as `n`.
+    #[inline(always)]
+    fn derivative(force: f64, v: f64, g: f64, n: Power) -> f64 {
+        let u = force / g;
+        v - libm::fabs(v) * libm::copysign(n.abs(u), u)
+    }
+
+    /// n and n − 1, as classified at construction.
+    #[inline(always)]
+    fn exponents(&self) -> Exponents {
+        Exponents {
+            n: self.n,
+            n_less_one: self.n_less_one,
+        }
     }
 
     /// One step with velocity input `v` held over `dt`; returns the friction force.
@@ -244,11 +291,19 @@ impl<H: Hysteresis> Params<H> {
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear(state, v, dt, stiffness, out, |force, _| Ok(force));
         }
-        per_scheme!(scheme, |scheme| {
-            run_block(state, v, out, |state, v| {
-                self.advance(state, v, dt, inverse_dt, scheme)
-            })
-        })
+        let mut at_z = self.force_at(state);
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
+            run_ahead(
+                state,
+                v,
+                out,
+                |_, v, levels| self.levels(v, levels),
+                |state, v, g| {
+                    let step = (v, g, dt, inverse_dt);
+                    self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)
+                },
+            )
+        }))
     }
 
     /// Runs positions `x` through one channel, writing the forces into `out` (same length);
@@ -266,11 +321,24 @@ impl<H: Hysteresis> Params<H> {
         if let Some(stiffness) = self.closed_form(scheme) {
             return self.run_linear_position(state, x, dt, stiffness, out, |force, _, _| Ok(force));
         }
-        per_scheme!(scheme, |scheme| {
-            run_block(state, x, out, |state, x| {
-                self.advance_position(state, x, dt, inverse_dt, scheme)
-            })
-        })
+        let mut at_z = self.force_at(state);
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
+            run_ahead(
+                state,
+                x,
+                out,
+                |state, x, values| self.velocities_and_levels(state, x, dt, values),
+                |state, x, (v, g)| {
+                    let v = finite_velocity(v)?;
+                    let step = (v, g, dt, inverse_dt);
+                    let force =
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
+                    state.last_position = Some(x);
+                    // run_ahead puts the state back on this error, like on any other.
+                    Ok(force)
+                },
+            )
+        }))
     }
 
     /// [`Params::simulate_position`] with a position-dependent level and a position force
@@ -299,21 +367,34 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         // The terms depend on the position alone: a chunk's are evaluated ahead of stepping it.
-        per_scheme!(scheme, |scheme| {
+        let mut at_z = self.force_at(state);
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
             run_ahead(
                 state,
                 x,
                 out,
-                |_, x, terms| position_terms(level, position_force, x, terms),
-                |state, x, terms| {
-                    let v = position_velocity(state, x, dt)?;
-                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                |state, x, values| {
+                    let mut steps = [(0.0, 0.0); AHEAD];
+                    self.velocities_and_levels(state, x, dt, &mut steps);
+                    let mut terms = [(0.0, 0.0); AHEAD];
+                    position_terms(level, position_force, x, &mut terms);
+                    for (value, (step, terms)) in
+                        values.iter_mut().zip(steps.into_iter().zip(terms))
+                    {
+                        *value = (step, terms);
+                    }
+                },
+                |state, x, ((v, g), terms)| {
+                    let v = finite_velocity(v)?;
+                    let step = (v, g, dt, inverse_dt);
+                    let force =
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
                     state.last_position = Some(x);
                     // run_ahead puts the state back on this error, like on any other.
                     self.with_terms(force, v, terms, level, position_force)
                 },
             )
-        })
+        }))
     }
 
     /// [`Params::simulate`] with a position-dependent level and a position force evaluated at
@@ -357,7 +438,8 @@ impl<H: Hysteresis> Params<H> {
                 self.at_position(force, x, v, level, position_force)
             });
         }
-        per_scheme!(scheme, |scheme| {
+        let mut at_z = self.force_at(state);
+        per_scheme!(scheme, |scheme| per_power!(self, |exponents| {
             // The chunks of x are those of v (the lengths are equal), their terms evaluated
             // ahead of stepping them.
             let mut positions = x.chunks(AHEAD);
@@ -365,16 +447,25 @@ impl<H: Hysteresis> Params<H> {
                 state,
                 v,
                 out,
-                |_, _, terms| {
+                |_, v, values| {
                     let x = positions.next().unwrap_or(&[]);
-                    position_terms(level, position_force, x, terms);
+                    let mut levels = [0.0; AHEAD];
+                    self.levels(v, &mut levels);
+                    let mut terms = [(0.0, 0.0); AHEAD];
+                    position_terms(level, position_force, x, &mut terms);
+                    for (value, (g, terms)) in values.iter_mut().zip(levels.into_iter().zip(terms))
+                    {
+                        *value = (g, terms);
+                    }
                 },
-                |state, v, terms| {
-                    let force = self.advance(state, v, dt, inverse_dt, scheme)?;
+                |state, v, (g, terms)| {
+                    let step = (v, g, dt, inverse_dt);
+                    let force =
+                        self.advance_from::<true>(state, step, scheme, exponents, &mut at_z)?;
                     self.with_terms(force, v, terms, level, position_force)
                 },
             )
-        })
+        }))
     }
 
     /// [`Params::at_position`] with the terms at the step's position evaluated already
@@ -429,8 +520,13 @@ impl<H: Hysteresis> Params<H> {
             });
         }
         let mut deflections = z.iter_mut();
+        let mut at_z = self.force_at(state);
         run_block(state, x, out, |state, x| {
-            let force = self.advance_position(state, x, dt, inverse_dt, scheme)?;
+            let v = position_velocity(state, x, dt)?;
+            let step = (v, self.stribeck.g(v), dt, inverse_dt);
+            let force =
+                self.advance_from::<true>(state, step, scheme, self.exponents(), &mut at_z)?;
+            state.last_position = Some(x);
             if let Some(slot) = deflections.next() {
                 *slot = state.z;
             }
@@ -499,7 +595,7 @@ impl<H: Hysteresis> Params<H> {
             },
             |state, v, factor| {
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, inverse_dt, z_next)?;
+                let force = self.advance_to::<false>(state, v, inverse_dt, z_next, &mut 0.0)?;
                 then(force, v)
             },
         )
@@ -535,22 +631,12 @@ impl<H: Hysteresis> Params<H> {
             |state, x, (v, factor)| {
                 let v = finite_velocity(v)?;
                 let z_next = linear_root(state.z, dt * v, factor);
-                let force = self.advance_to(state, v, inverse_dt, z_next)?;
+                let force = self.advance_to::<false>(state, v, inverse_dt, z_next, &mut 0.0)?;
                 state.last_position = Some(x);
                 // run_ahead puts the state back on this error, like on any other.
                 then(force, x, v)
             },
         )
-    }
-
-    /// z⁺ of the implicit step: [`Params::solve_implicit`]'s root, with the closed form inlined
-    /// into the block calls' loops.
-    #[inline(always)]
-    fn implicit_z(&self, state: &State<H::Memory>, v: f64, dt: f64) -> f64 {
-        match self.linear_root(state, v, dt) {
-            Some(z) => z,
-            None => self.residual(state, v, dt).solve().z,
-        }
     }
 
     /// R(y) of the implicit step from this state (zero at the step's solution).
@@ -559,15 +645,29 @@ impl<H: Hysteresis> Params<H> {
     }
 
     fn residual<'a>(&'a self, state: &'a State<H::Memory>, v: f64, dt: f64) -> Residual<'a, H> {
+        self.residual_with(state, v, self.stribeck.g(v), dt, self.exponents())
+    }
+
+    /// [`Params::residual`] with the exponents `exponents` (constants in a block call's loop
+    /// for n = 2, see [`per_power`]).
+    #[inline(always)]
+    fn residual_with<'a>(
+        &'a self,
+        state: &'a State<H::Memory>,
+        v: f64,
+        g: f64,
+        dt: f64,
+        Exponents { n, n_less_one }: Exponents,
+    ) -> Residual<'a, H> {
         Residual {
             hysteresis: &self.hysteresis,
             memory: &state.memory,
             z: state.z,
             dt_v: dt * v,
             dt_abs_v: dt * libm::fabs(v),
-            inverse_g: 1.0 / self.stribeck.g(v),
-            n: self.n,
-            n_less_one: self.n_less_one,
+            inverse_g: 1.0 / g,
+            n,
+            n_less_one,
         }
     }
 
@@ -592,23 +692,94 @@ impl<H: Hysteresis> Params<H> {
         inverse_dt: f64,
         scheme: Scheme,
     ) -> Result<f64, Error> {
+        let step = (v, self.stribeck.g(v), dt, inverse_dt);
+        self.advance_from::<false>(state, step, scheme, self.exponents(), &mut 0.0)
+    }
+
+    /// [`Params::advance`] with Fh(z) at step start handed over when `CARRY`: `at_z` holds it on
+    /// entry and, after a step that succeeded, Fh(z⁺) from the moved memory, which the next step
+    /// starts from ([`Hysteresis::commit_force`]). The block calls carry it from step to step,
+    /// which saves a pass over the elements per step; without `CARRY` it is evaluated here and
+    /// `at_z` is neither read nor written. The same values either way, bit for bit.
+    #[inline(always)]
+    fn advance_from<const CARRY: bool>(
+        &self,
+        state: &mut State<H::Memory>,
+        (v, g, dt, inverse_dt): (f64, f64, f64, f64),
+        scheme: Scheme,
+        exponents: Exponents,
+        at_z: &mut f64,
+    ) -> Result<f64, Error> {
         let z = state.z;
-        let z_next = match scheme {
-            Scheme::Implicit => self.implicit_z(state, v, dt),
-            Scheme::Explicit => z + dt * self.state_derivative(state, z, v),
+        let force_at_z = |state: &State<H::Memory>| {
+            if CARRY {
+                *at_z
+            } else {
+                self.hysteresis.force(&state.memory, z)
+            }
         };
-        self.advance_to(state, v, inverse_dt, z_next)
+        let z_next = match scheme {
+            Scheme::Implicit => {
+                if let Some(z_next) = self.linear_root(state, v, dt) {
+                    z_next
+                } else {
+                    let residual = self.residual_with(state, v, g, dt, exponents);
+                    residual.solve_from(force_at_z(state)).z
+                }
+            }
+            Scheme::Explicit => z + dt * Self::derivative(force_at_z(state), v, g, exponents.n),
+        };
+        self.advance_to::<CARRY>(state, v, inverse_dt, z_next, at_z)
+    }
+
+    /// Fh(z) at the start of a block call's first step, for [`Params::advance_from`]: evaluated
+    /// only where a step uses it (not by the closed form of [`Params::closed_form`]).
+    #[inline(always)]
+    fn force_at(&self, state: &State<H::Memory>) -> f64 {
+        self.hysteresis.force(&state.memory, state.z)
+    }
+
+    /// g(v) at each of the velocities `v` (at most [`AHEAD`]) into `levels`: a chunk's are
+    /// computed ahead of stepping it, so that their exponentials overlap instead of each step
+    /// waiting for its own. The same g as a step computes, so the same forces bit for bit.
+    #[inline(always)]
+    fn levels(&self, v: &[f64], levels: &mut [f64; AHEAD]) {
+        for (level, &v) in levels.iter_mut().zip(v) {
+            *level = self.stribeck.g(v);
+        }
+    }
+
+    /// The velocity at each of the positions `x` (at most [`AHEAD`]; as [`position_velocity`]
+    /// computes it, from the state's last position on) and g at it, into `values`, ahead of
+    /// stepping them as in [`Params::levels`]. A non-finite velocity gets a level that is never
+    /// used: the step refuses the velocity.
+    #[inline(always)]
+    fn velocities_and_levels(
+        &self,
+        state: &State<H::Memory>,
+        x: &[f64],
+        dt: f64,
+        values: &mut [(f64, f64); AHEAD],
+    ) {
+        let mut previous = state.last_position;
+        for (value, &x) in values.iter_mut().zip(x) {
+            let v = velocity_between(previous, x, dt);
+            previous = Some(x);
+            *value = (v, self.stribeck.g(v));
+        }
     }
 
     /// The step to the new deflection `z_next` (refused if not finite): the force and the
     /// commit of [`Params::advance`].
+    /// With `CARRY`, also writes Fh(z⁺) from the moved memory into `at_z` ([`Params::advance_from`]).
     #[inline(always)]
-    fn advance_to(
+    fn advance_to<const CARRY: bool>(
         &self,
         state: &mut State<H::Memory>,
         v: f64,
         inverse_dt: f64,
         z_next: f64,
+        at_z: &mut f64,
     ) -> Result<f64, Error> {
         let z = state.z;
         if !z_next.is_finite() {
@@ -618,34 +789,50 @@ impl<H: Hysteresis> Params<H> {
         let viscous = self.sigma2_at(v) * v;
         let bound =
             self.hysteresis.force_bound(z_next) + libm::fabs(micro_viscous) + libm::fabs(viscous);
-        let force = if bound < 0.5 * f64::MAX {
-            self.hysteresis.commit(&mut state.memory, z_next) + micro_viscous + viscous
+        let hysteresis = if bound < 0.5 * f64::MAX {
+            if CARRY {
+                let (committed, next) = self.hysteresis.commit_force(&mut state.memory, z_next);
+                *at_z = next;
+                committed
+            } else {
+                self.hysteresis.commit(&mut state.memory, z_next)
+            }
         } else {
-            self.commit_copy(&mut state.memory, z_next, micro_viscous, viscous)?
+            let (committed, next) =
+                self.commit_copy::<CARRY>(&mut state.memory, z_next, micro_viscous, viscous)?;
+            if CARRY {
+                *at_z = next;
+            }
+            committed
         };
         state.z = z_next;
-        Ok(force)
+        Ok(hysteresis + micro_viscous + viscous)
     }
 
     /// The commit of a step whose force may not be finite: into a copy of the memory, stored
     /// back only if the force is finite. Out of line, so that the in-place path keeps its own
     /// inlined commit.
+    /// Returns Fh(z⁺) as committed and, with `CARRY`, Fh(z⁺) from the moved memory (else NaN).
     #[cold]
     #[inline(never)]
-    fn commit_copy(
+    fn commit_copy<const CARRY: bool>(
         &self,
         memory: &mut H::Memory,
         z_next: f64,
         micro_viscous: f64,
         viscous: f64,
-    ) -> Result<f64, Error> {
+    ) -> Result<(f64, f64), Error> {
         let mut copy = *memory;
-        let force = self.hysteresis.commit(&mut copy, z_next) + micro_viscous + viscous;
-        if !force.is_finite() {
+        let (committed, next) = if CARRY {
+            self.hysteresis.commit_force(&mut copy, z_next)
+        } else {
+            (self.hysteresis.commit(&mut copy, z_next), f64::NAN)
+        };
+        if !(committed + micro_viscous + viscous).is_finite() {
             return Err(Error::Diverged { index: 0 });
         }
         *memory = copy;
-        Ok(force)
+        Ok((committed, next))
     }
 
     #[inline(always)]

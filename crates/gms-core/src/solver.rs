@@ -93,8 +93,17 @@ impl<H: Hysteresis> Residual<'_, H> {
     /// of Fh on the side where the root lies (`piece`): the sign of R tells the side, so the
     /// other side's slope and breakpoint are never computed.
     pub fn solve(&self) -> Solution {
+        self.solve_from(self.hysteresis.force(self.memory, self.z))
+    }
+
+    /// [`Residual::solve`], given Fh(z) at step start (`force`, as
+    /// [`Hysteresis::force`] computes it): a block call has it from the previous step's commit
+    /// ([`Hysteresis::commit_force`]).
+    #[allow(clippy::inline_always)] // see the doc comment
+    #[inline(always)]
+    pub fn solve_from(&self, force: f64) -> Solution {
         let mut y = self.z;
-        let mut force = self.hysteresis.force(self.memory, y);
+        let mut force = force;
         let mut r = self.value(y, force);
         let mut iterations = 1;
         if r == 0.0 {

@@ -79,6 +79,16 @@ pub trait Hysteresis {
     /// Fh(z), which equals the trial force at `z`.
     fn commit(&self, memory: &mut Self::Memory, z: f64) -> f64;
 
+    /// [`Hysteresis::commit`], then Fh at the same `z` from the moved memory: the pair that
+    /// `commit` and then [`Hysteresis::force`] return, bit for bit. The second is the force the
+    /// next step starts from, so that a block call hands it over instead of evaluating it again;
+    /// an implementation may compute both in one pass over its elements.
+    #[inline]
+    fn commit_force(&self, memory: &mut Self::Memory, z: f64) -> (f64, f64) {
+        let committed = self.commit(memory, z);
+        (committed, self.force(memory, z))
+    }
+
     /// sup |Fh| over all z (infinite for a linear spring).
     fn max_force(&self) -> f64;
 
