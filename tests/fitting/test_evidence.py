@@ -9,10 +9,10 @@ from scipy import signal
 
 from leuven_rt.data.reconstruction import (
     ambiguous_samples,
+    held_by_drive,
     median_excursion,
     noisy_position,
     resolution,
-    resting_samples,
     reversals,
     travel_since_reversal,
 )
@@ -136,28 +136,35 @@ def test_a_servo_dithering_by_a_count_keeps_the_travel_of_its_strokes() -> None:
     assert median_excursion(clean) == pytest.approx(2e-3, rel=0.01)
 
 
-def stop_and_creep() -> tuple[np.ndarray, np.ndarray, np.ndarray, float, float]:
-    """A 1 µm encoder at 1 kHz: sliding, a stop of 200 samples held by a force that wanders (a
-    controller's integrator), then a creep at a quarter of a count a sample, then sliding."""
+def stop_and_creep(wander: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """A 1 µm encoder at 1 kHz: sliding, a stop of 200 samples whose force rises by ``wander``
+    (a controller's integrator) or holds (``wander`` 0), a creep at a quarter of a count a
+    sample, then sliding; force noise 0.01."""
     dt, step = 1e-3, 1e-6
     v = np.concatenate(
         [np.full(300, 2e-3), np.zeros(200), np.full(400, 0.25 * step / dt), np.full(300, -2e-3)]
     )
     x = np.round(np.cumsum(v) * dt / step) * step
-    f = np.sign(v) + np.concatenate([np.zeros(300), np.linspace(0.0, 0.8, 200), np.zeros(700)])
-    return x, v, f, dt, step
+    held = np.concatenate([np.zeros(300), np.linspace(0.0, wander, 200), np.zeros(700)])
+    f = np.sign(v) + held + np.random.default_rng(4).normal(0.0, 0.01, v.size)
+    return x, v, f, dt
 
 
-def test_a_stop_is_at_rest_and_a_creep_between_counts_is_not() -> None:
-    x, v, _, dt, _ = stop_and_creep()
-    rest = resting_samples(x, v, dt)
-    assert rest[301:500].all()
-    assert not rest[500:900].any()
-    assert not rest[:300].any() and not rest[900:].any()
+def test_a_stop_where_the_force_wanders_is_held_by_the_drive() -> None:
+    x, v, f, dt = stop_and_creep(0.8)
+    held = held_by_drive(x, v, f, dt)
+    assert held[301:500].all()
+    assert not held[500:900].any()  # a creep between counts moves
+    assert not held[:300].any() and not held[900:].any()
 
 
-def test_the_rounds_weigh_out_a_stop_only_where_a_velocity_drives_the_model() -> None:
-    x, v, f, dt, _ = stop_and_creep()
+def test_a_stop_where_the_force_holds_is_not() -> None:
+    x, v, f, dt = stop_and_creep(0.0)
+    assert not held_by_drive(x, v, f, dt).any()
+
+
+def test_the_rounds_weigh_out_a_wandering_stop_only_where_a_velocity_drives_the_model() -> None:
+    x, v, f, dt = stop_and_creep(0.8)
     record = MotionData(np.arange(x.size) * dt, x, f, v=v)
     by_velocity = select.prepare(record, Reconstruction("velocity"), False)[0]
     assert not np.any(by_velocity.weight[301:500])

@@ -140,20 +140,27 @@ def ambiguous_samples(x: FloatArray, margin: int) -> NDArray[np.bool_]:
 REST_RUN = 5
 #: At rest, a logged velocity moves the axis by less than this share of an encoder step a sample.
 REST_SHARE = 1e-3
+#: A stop whose force spreads by more than this many times the noise is held by the drive.
+WANDER = 3.0
 
 
-def resting_samples(x: FloatArray, v: FloatArray, dt: float) -> NDArray[np.bool_]:
-    """Samples where a log with a velocity column shows the axis at rest: runs of at least
-    :data:`REST_RUN` samples where the encoder does not count and the velocity moves it by less
-    than :data:`REST_SHARE` of a step per sample. Held there (a mass stuck in a closed loop), the
-    force is whatever the drive applies, which no model driven by the motion can follow."""
+def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
+    """Samples where a log with a velocity column shows the axis stopped while the force wanders:
+    runs of at least :data:`REST_RUN` samples where the encoder does not count and the velocity
+    moves the axis by less than :data:`REST_SHARE` of a step per sample, whose force spreads about
+    its mean by more than :data:`WANDER` times the noise (read from the force's one-sample
+    differences, robustly). Friction that holds at a stop holds its force there; a force that
+    wanders while the axis stands is the drive's (a closed loop's integrator winding up on a stuck
+    mass), which no model driven by the motion can follow."""
     step = resolution(x)
     still = np.zeros(x.size, dtype=bool)
     still[1:] = (np.diff(x) == 0) & (np.abs(v[1:]) * dt < REST_SHARE * step)
     edges = np.flatnonzero(np.diff(np.concatenate(([0], still.astype(np.int8), [0]))))
+    differences = np.diff(f)
+    noise = 1.4826 * float(np.median(np.abs(differences - np.median(differences)))) / np.sqrt(2.0)
     out = np.zeros(x.size, dtype=bool)
     for begin, end in zip(edges[::2], edges[1::2], strict=True):
-        if end - begin >= REST_RUN:
+        if end - begin >= REST_RUN and float(np.std(f[begin:end])) > WANDER * noise:
             out[begin:end] = True
     return out
 

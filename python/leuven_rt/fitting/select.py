@@ -29,11 +29,11 @@ from .._typing import FloatArray
 from ..data.reconstruction import (
     ambiguous_samples,
     filter_margin,
+    held_by_drive,
     median_excursion,
     noisy_position,
     reconstruct,
     resolution,
-    resting_samples,
 )
 from ..data.records import MotionData
 from ..data.signals import residual_noise
@@ -593,9 +593,9 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
         # are where presliding shows.
         weight[ambiguous_samples(record.x, filter_margin(reconstruction, record.dt))] = 0.0
     if reconstruction.source == "velocity" and record.v is not None:
-        # At a stop the force is what holds the axis there (in a closed loop, the controller's),
-        # and the model holds its state: what the force does there tells nothing of an effect.
-        weight[resting_samples(record.x, record.v, record.dt)] = 0.0
+        # A force that wanders while the axis stands is the drive's (a controller's), and the
+        # model holds its state: what the force does there tells nothing of an effect.
+        weight[held_by_drive(record.x, record.v, record.f, record.dt)] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
