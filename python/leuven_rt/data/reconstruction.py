@@ -34,7 +34,7 @@ from .._typing import FloatArray
 from ..errors import DataError
 from ..modelfile import Reconstruction
 from .records import MotionData
-from .signals import check_cutoff, lowpass
+from .signals import check_cutoff, lowpass, robust_spread
 
 #: A position whose counts reverse this many times as often as its low-passed version is noisy.
 SPURIOUS = 4
@@ -157,7 +157,7 @@ def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDA
     still[1:] = (np.diff(x) == 0) & (np.abs(v[1:]) * dt < REST_SHARE * step)
     edges = np.flatnonzero(np.diff(np.concatenate(([0], still.astype(np.int8), [0]))))
     differences = np.diff(f)
-    noise = 1.4826 * float(np.median(np.abs(differences - np.median(differences)))) / np.sqrt(2.0)
+    noise = robust_spread(differences) / math.sqrt(2.0)
     out = np.zeros(x.size, dtype=bool)
     for begin, end in zip(edges[::2], edges[1::2], strict=True):
         if end - begin >= REST_RUN and float(np.std(f[begin:end])) > WANDER * noise:
@@ -186,7 +186,7 @@ def noisy_position(x: FloatArray, dt: float) -> bool:
     if x.size < 8 or not cutoff * x.size * dt >= 8.0 or not step > 0:
         return False
     second = np.diff(x, 2)
-    spread = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / math.sqrt(6.0)
+    spread = robust_spread(second) / math.sqrt(6.0)
     if not spread > NOISE_COUNTS * step:
         return False
     return reversals(x) > SPURIOUS * max(reversals(lowpass(x, dt, cutoff)), 1)

@@ -94,6 +94,12 @@ def estimate_derivatives(data: MotionData, cutoff: float | None = None, order: i
     return Derivatives(x=x, v=v, a=np.gradient(v, dt), cutoff=cutoff)
 
 
+def robust_spread(values: FloatArray) -> float:
+    """The standard deviation of normally distributed ``values``, read robustly: 1.4826 times
+    their median absolute deviation, which a few outliers (a friction flip, a spike) do not move."""
+    return 1.4826 * float(np.median(np.abs(values - np.median(values))))
+
+
 #: Lags [samples] at which the noise of a model's residual is read.
 RESIDUAL_LAGS = (1, 2, 4, 8, 16, 32, 64)
 
@@ -114,7 +120,7 @@ def residual_noise(residual: FloatArray, rows: NDArray[np.bool_] | None = None) 
             differences = differences[rows[lag:] & rows[:-lag]]
         if differences.size <= 2 * lag:
             break
-        spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
+        spread = robust_spread(differences)
         estimates.append(spread / math.sqrt(2.0))
         if len(estimates) >= 2 and estimates[-1] < (1.0 + PLATEAU) * estimates[-2]:
             return max(estimates[-2:])
@@ -157,7 +163,7 @@ def noise_floor(force: FloatArray, rows: NDArray[np.bool_] | None = None) -> flo
             differences = differences[rows[lag:] & rows[:-lag]]
             if differences.size <= 2 * lag:
                 break
-        spread = 1.4826 * float(np.median(np.abs(differences - np.median(differences))))
+        spread = robust_spread(differences)
         estimates.append(spread / math.sqrt(2.0))
         if len(estimates) >= 2:
             growth = estimates[-1] / max(estimates[-2], 1e-300)

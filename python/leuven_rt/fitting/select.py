@@ -36,7 +36,7 @@ from ..data.reconstruction import (
     resolution,
 )
 from ..data.records import MotionData
-from ..data.signals import residual_noise
+from ..data.signals import residual_noise, robust_spread
 from ..errors import DataError
 from ..modelfile import Reconstruction
 from .evaluate import evaluate, params_of
@@ -242,7 +242,7 @@ def _sample_noise(fitted: Fitted, target: Target) -> float:
     differences = (residual[1:] - residual[:-1])[rows]
     if differences.size < 2:
         return 0.0
-    return 1.4826 * float(np.median(np.abs(differences - np.median(differences)))) / math.sqrt(2.0)
+    return robust_spread(differences) / math.sqrt(2.0)
 
 
 def _evidence(final: Fitted, target: Target, floor: Floor, scales: Scales) -> tuple[float, Floor, float]:
