@@ -185,30 +185,40 @@ def _select_on(
     # noise (a drive that lets go at a stop, a spike) weighs little more than one missed by it,
     # so that no effect is named to explain it.
     target = dataclasses.replace(target, scale=ROBUST * math.sqrt(permissive))
-    forward = target
     base = fit(structure, scales, target, base.theta)
     say("selecting effects")
+    run = _both_ways(base, scales, target, floor, settings, permissive, say)
+    if not _drifting(run.final, run.tried, scales, run.target, settings, run.unit):
+        return run
+    say("a drift of the level: selecting again with it fitted alongside")
+    # The rounds again as the first time: forward at the forward rounds' scale.
+    base = fit(structure.with_drift(), scales, target, base.theta)
+    run = _both_ways(base, scales, target, run.floor, settings, permissive, say)
+    without = fit(run.final.structure.with_drift(False), scales, run.target, run.final.theta)
+    return dataclasses.replace(run, without=without, drift=True)
+
+
+def _both_ways(
+    base: Fitted,
+    scales: Scales,
+    target: Target,
+    floor: Floor,
+    settings: Settings,
+    permissive: float,
+    say: Progress,
+) -> _Run:
+    """Forward from ``base`` on ``target`` (counted at the forward rounds' scale, effects added
+    against the ``permissive`` unit), then backward: the noise, the floor and the unit read from
+    the final model, the target rescaled (:func:`_rescaled`), the effects pruned and exchanged.
+    The model is ``final`` and nothing drifts; the caller says otherwise."""
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
     target, final = _rescaled(final, scales, target, noise)
     final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
-    drift = _drifting(final, tried, scales, target, settings, unit)
-    without = final
-    if drift:
-        say("a drift of the level: selecting again with it fitted alongside")
-        # The rounds again as the first time: forward at the forward rounds' scale.
-        target = forward
-        base = fit(structure.with_drift(), scales, target, base.theta)
-        steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
-        noise, floor, unit = _evidence(final, target, floor, scales)
-        target, final = _rescaled(final, scales, target, noise)
-        final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
-        final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
-        without = fit(final.structure.with_drift(False), scales, target, final.theta)
     if steps and steps[-1].after is not final:  # refitted at the backward round's scale
         steps[-1] = Step(steps[-1].effect, steps[-1].before, final)
-    return _Run(base, steps, final, without, drift, noise, floor, unit, tried, target)
+    return _Run(base, steps, final, final, False, noise, floor, unit, tried, target)
 
 
 def _lifted(run: _Run, whole: Target, scales: Scales) -> _Run:
@@ -286,6 +296,7 @@ def _prune(
     after it change that residual. When the fresh one counts on the model without it, it takes
     the old one's place instead."""
     added = [step.effect for step in steps]
+    threshold = settings.significance * unit
     changed = False
     refound: set[str] = set()
     while added:
@@ -294,9 +305,8 @@ def _prune(
             structure = final.structure.without(effect)
             options.append((effect, fit(structure, scales, target, _held(final, structure, scales), SCREEN)))
         effect, reduced = min(options, key=lambda option: option[1].mse)
-        if _significant(reduced, final, target, settings.significance * unit, settings):
+        if _significant(reduced, final, target, threshold, settings):
             break
-        threshold = settings.significance * unit
         if effect in REFOUND and effect not in refound:
             refound.add(effect)
             fresh = _extend(reduced, effect, scales, target, SCREEN)
@@ -369,20 +379,19 @@ def _drifting(
     ``final``. Each fit is screened like a candidate: only the decision is kept (with a drift
     the rounds run again from the baseline), and a drift gains what it gains within the first
     few iterations."""
+    drift, effect_alone = settings.drift * unit, settings.significance * unit
     drifting = fit(final.structure.with_drift(), scales, target, final.theta, SCREEN)
-    if _significant(final, drifting, target, settings.drift * unit, settings):
+    if _significant(final, drifting, target, drift, settings):
         return True
     for effect, gain in tried:
         if not gain > settings.significance or final.structure.has(effect):
             continue
         candidate = _extend(final, effect, scales, target, SCREEN)
-        if candidate is None or _significant(
-            final, candidate, target, settings.significance * unit, settings
-        ):
+        if candidate is None or _significant(final, candidate, target, effect_alone, settings):
             continue
         both = fit(candidate.structure.with_drift(), scales, target, candidate.theta, SCREEN)
-        if _significant(candidate, both, target, settings.drift * unit, settings) and _significant(
-            final, both, target, (settings.drift + settings.significance) * unit, settings
+        if _significant(candidate, both, target, drift, settings) and _significant(
+            final, both, target, drift + effect_alone, settings
         ):
             return True
     return False
