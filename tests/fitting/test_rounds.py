@@ -10,8 +10,8 @@ from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
 from leuven_rt.fitting.settings import Settings
-from leuven_rt.fitting.solve import fit
-from leuven_rt.fitting.structure import Structure
+from leuven_rt.fitting.solve import Target, fit
+from leuven_rt.fitting.structure import Scales, Structure
 
 NOISE = 0.2
 
@@ -30,10 +30,15 @@ def slowly_sampled_bank() -> MotionData:
     return MotionData(t, x, f)
 
 
+def rounds_target(record: MotionData) -> tuple[Target, Scales]:
+    """The target and scales the rounds fit ``record`` on."""
+    noisy = noisy_position(record.x, record.dt)
+    return select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
+
+
 def test_a_bank_found_only_from_a_spread_start_is_found() -> None:
     record = slowly_sampled_bank()
-    noisy = noisy_position(record.x, record.dt)
-    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
+    target, scales = rounds_target(record)
     structure = Structure(frozenset({"coulomb", "viscous"}))
     base = fit(structure, scales, target, {"Fc": 4.0, "sigma2": 50.0})
     # From all its weight on the stiff element the fit has no direction: the samples where the
@@ -65,8 +70,7 @@ def position_ripple() -> MotionData:
 
 def test_a_position_dependence_about_to_be_taken_out_is_found_anew() -> None:
     record = position_ripple()
-    noisy = noisy_position(record.x, record.dt)
-    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
+    target, scales = rounds_target(record)
     structure = Structure(frozenset({"coulomb", "viscous"}))
     base = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 0.5})
     # A period found in an earlier model's residual, off the one the force repeats with: the term

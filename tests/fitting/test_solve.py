@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-from test_rounds import slowly_sampled_bank
+from test_rounds import rounds_target, slowly_sampled_bank
 
-from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.fitting import select
 from leuven_rt.fitting.evaluate import evaluate
 from leuven_rt.fitting.solve import fit
@@ -17,8 +16,7 @@ def test_the_force_returned_is_the_one_the_returned_theta_simulates() -> None:
     # the asymmetry's fit from the baseline evaluates a step it rejects last (after 4 evaluations
     # and when it converges after 6), so the point it returns is not the last one evaluated.
     record = slowly_sampled_bank()
-    noisy = noisy_position(record.x, record.dt)
-    target, scales = select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
+    target, scales = rounds_target(record)
     structure = Structure(frozenset({"coulomb", "viscous"}))
     base = fit(structure, scales, target, {"Fc": 4.0, "sigma2": 50.0})
     asymmetric = structure.with_effect("asymmetry")
