@@ -148,9 +148,30 @@ def select(
     if sample is not None:
         say("fitting the written file on the whole record")
     written = fit(without.structure, file[2], file[1], file[3].theta)
+    file_target, written = _robustly(written, file[1], file[2], run.noise, settings.significance * run.unit)
     return Selection(reconstruction, target, scales, run.noise, floor, run.base, run.steps, final, run.drift,
-                     without, run.unit, run.tried, file[0], file[1], file[2], written,
+                     without, run.unit, run.tried, file[0], file_target, file[2], written,
                      int(np.count_nonzero(gross)))  # fmt: skip
+
+
+def _robustly(
+    written: Fitted, target: Target, scales: Scales, noise: float, threshold: float
+) -> tuple[Target, Fitted]:
+    """The written file refitted with the rounds' robust count at the final model's noise (a
+    screening's iterations from where the plain fit stands), and its target, when that costs at
+    most ``threshold`` in the squared error ``predict`` judges; ``written`` and its plain target
+    otherwise.
+
+    Counted plainly, a stretch no friction model follows (a drive that winds up on a standing axis,
+    as a robot's start-up does) pulls every parameter towards it. Where the errors beyond the scale
+    are the log's own limit instead (the flips an encoder cannot place, an acceleration read from
+    a coarse position), the file must answer for them, and counting them robustly costs more than
+    an effect's significance on this log."""
+    counted = dataclasses.replace(target, scale=ROBUST * max(noise, 1e-12 * scales.force))
+    robust = fit(written.structure, scales, counted, written.theta, SCREEN)
+    if full_mse(robust, target) - full_mse(written, target) <= threshold:
+        return counted, robust
+    return target, written
 
 
 @dataclass(frozen=True, eq=False)
@@ -562,7 +583,8 @@ def choose_reconstruction(
     given, :mod:`.sample`). The file is judged as ``predict`` judges it: by the squared error
     over every sample but the filters' edges, so it is fitted that way too (no robust loss, the
     reversals the rounds leave out included): the error at a reversal is part of what a
-    compensator driven by this signal gives."""
+    compensator driven by this signal gives. Whether the written file is then counted robustly is
+    :func:`_robustly`'s choice."""
     prepared: list[tuple[Reconstruction, Target, Scales]] = []
     for option in reconstruction_options(record, noisy):
         try:
