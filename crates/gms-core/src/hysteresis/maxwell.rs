@@ -257,6 +257,46 @@ impl<const N: usize> MaxwellSlip<N> {
     pub fn delta(&self) -> &[f64; N] {
         &self.delta
     }
+
+    /// [`Hysteresis::piece`] towards +z (`RIGHTWARD`) or −z: one pass for one side, half the
+    /// comparisons of `trial`, and no force (the solver has it already). An element counts
+    /// towards a side's slope where it sticks on that side of z; the side's end is the nearest
+    /// breakpoint beyond z.
+    #[inline(always)]
+    fn side<const RIGHTWARD: bool>(&self, zeta: &[f64; N], z: f64) -> Piece {
+        let mut slope = [[0.0; 2]; 2];
+        let none = if RIGHTWARD {
+            f64::INFINITY
+        } else {
+            f64::NEG_INFINITY
+        };
+        let mut end = [[none; 2]; 2];
+        for_each_element(
+            &self.stiffness,
+            &self.delta,
+            zeta,
+            |at, k, limit, position| {
+                if let (Some(slope), Some(end)) = (lane(&mut slope, at), lane(&mut end, at)) {
+                    let (lower, upper) = (position - limit, position + limit);
+                    if RIGHTWARD {
+                        *slope += select(lower <= z && z < upper, k, 0.0);
+                        *end = nearer_above(*end, lower, upper, z);
+                    } else {
+                        *slope += select(lower < z && z <= upper, k, 0.0);
+                        *end = nearer_below(*end, lower, upper, z);
+                    }
+                }
+            },
+        );
+        Piece {
+            slope: sum(slope),
+            end: if RIGHTWARD {
+                smallest_of(end)
+            } else {
+                largest_of(end)
+            },
+        }
+    }
 }
 
 impl<const N: usize> Hysteresis for MaxwellSlip<N> {
@@ -330,45 +370,11 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
 
     #[inline]
     fn piece(&self, zeta: &[f64; N], z: f64, rightward: bool) -> Piece {
-        // One pass for one side: half the comparisons of `trial`, and no force (the solver has
-        // it already). The direction is tested once, outside the element loop.
-        let mut slope = [[0.0; 2]; 2];
+        // The direction is tested once, outside the element loop.
         if rightward {
-            let mut end = [[f64::INFINITY; 2]; 2];
-            for_each_element(
-                &self.stiffness,
-                &self.delta,
-                zeta,
-                |at, k, limit, position| {
-                    if let (Some(slope), Some(end)) = (lane(&mut slope, at), lane(&mut end, at)) {
-                        let (lower, upper) = (position - limit, position + limit);
-                        *slope += select(lower <= z && z < upper, k, 0.0);
-                        *end = nearer_above(*end, lower, upper, z);
-                    }
-                },
-            );
-            Piece {
-                slope: sum(slope),
-                end: smallest_of(end),
-            }
+            self.side::<true>(zeta, z)
         } else {
-            let mut end = [[f64::NEG_INFINITY; 2]; 2];
-            for_each_element(
-                &self.stiffness,
-                &self.delta,
-                zeta,
-                |at, k, limit, position| {
-                    if let (Some(slope), Some(end)) = (lane(&mut slope, at), lane(&mut end, at)) {
-                        let (lower, upper) = (position - limit, position + limit);
-                        *slope += select(lower < z && z <= upper, k, 0.0);
-                        *end = nearer_below(*end, lower, upper, z);
-                    }
-                },
-            );
-            Piece {
-                slope: sum(slope),
-                end: largest_of(end),
-            }
+            self.side::<false>(zeta, z)
         }
     }
 
