@@ -380,24 +380,8 @@ impl<const N: usize> Hysteresis for MaxwellSlip<N> {
 
     #[inline]
     fn commit(&self, zeta: &mut [f64; N], z: f64) -> f64 {
-        let mut force = [[0.0; 2]; 2];
-        move_each_element(
-            &self.stiffness,
-            &self.delta,
-            zeta,
-            |at, k, limit, position| {
-                let deflection = z - position;
-                let kept = clamp(deflection, limit);
-                if let Some(force) = lane(&mut force, at) {
-                    *force += k * kept;
-                }
-                // Only slipping elements move: rewriting a sticking ζ as z − (z − ζ) rounds. The
-                // store is unconditional (of the old value when sticking), so there is no branch
-                // on whether the element slipped.
-                select(kept != deflection, z - kept, position)
-            },
-        );
-        sum(force)
+        // `commit_force` without its force at z, which the compiler drops unused.
+        self.commit_force(zeta, z).0
     }
 
     /// `commit`'s pass, which computes each element's new position anyway, also sums the
