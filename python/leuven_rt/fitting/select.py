@@ -188,13 +188,14 @@ def _stiff_deflection(
     def error(multiple: float) -> float:
         trial = dataclasses.replace(scales, stiff=scales.stiff * multiple)
         force = evaluate(written.structure, trial, written.theta, target.motion, target.tau, None).force
-        return float(np.mean((force - target.force)[target.judged] ** 2))
+        return float(np.mean(_judged_error(force, target) ** 2))
 
     # A grid, not a descent: the error is flat wherever the element saturates within a sample.
+    # Its first point is the default, which ``written`` was simulated at already.
     multiples = np.geomspace(1.0, STIFF_RANGE, STIFF_STEPS)
-    errors = [error(float(multiple)) for multiple in multiples]
+    errors = [full_mse(written, target)] + [error(float(multiple)) for multiple in multiples[1:]]
     best = int(np.argmin(errors))
-    if not full_mse(written, target) - errors[best] > threshold:
+    if not errors[0] - errors[best] > threshold:
         return scales, written
     chosen = dataclasses.replace(scales, stiff=scales.stiff * float(multiples[best]))
     say(f"the stiff element's deflection chosen on the logged velocity: {chosen.stiff:.3g}")
@@ -218,7 +219,7 @@ def _robustly(
     plain fit stands: converged (25 iterations on ``make_data(seed=0)``, refitted), identify took
     10 % more CPU for the same file error."""
     scale = ROBUST * max(noise, 1e-12 * scales.force)
-    error = (written.force - target.force)[target.judged]
+    error = _judged_error(written.force, target)
     if not np.mean(np.where(np.abs(error) > scale, error**2, 0.0)) > threshold:
         # What lies beyond the scale cannot pull the plain fit by an effect's worth.
         return target, written
@@ -626,8 +627,13 @@ def reconstruction_options(record: MotionData, noisy: bool) -> list[Reconstructi
 def full_mse(fitted: Fitted, target: Target) -> float:
     """The mean squared simulation error over the samples ``target`` judges (every sample but the
     filters' edges): what :func:`leuven_rt.predict` reports, whatever the weights."""
-    error = (fitted.force - target.force)[target.judged]
-    return float(np.mean(error**2))
+    return float(np.mean(_judged_error(fitted.force, target) ** 2))
+
+
+def _judged_error(force: FloatArray, target: Target) -> FloatArray:
+    """``force`` minus the measured force over the samples ``target`` judges."""
+    error: FloatArray = (force - target.force)[target.judged]
+    return error
 
 
 def choose_reconstruction(
