@@ -132,9 +132,10 @@ def small_log(**changes: Any) -> dict[str, Any]:
     return {key: value for key, value in base.items() if value is not None}
 
 
-def max_relative_error(a: np.ndarray, b: np.ndarray) -> float:
-    """max|a − b| / max|b| over the whole run (0 when both are all zero)."""
-    scale = float(np.max(np.abs(b), initial=0.0))
+def max_relative_error(a: np.ndarray, b: np.ndarray, magnitude: np.ndarray | None = None) -> float:
+    """max|a − b| / max|b| over the whole run (0 when both are all zero); with ``magnitude``
+    (per sample, the size of what was summed into b), max|a − b| / max(|b| + magnitude)."""
+    scale = float(np.max(np.abs(b) if magnitude is None else np.abs(b) + magnitude, initial=0.0))
     difference = float(np.max(np.abs(a - b), initial=0.0))
     if scale == 0.0:
         return 0.0 if difference == 0.0 else np.inf

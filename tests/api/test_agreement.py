@@ -143,8 +143,7 @@ def test_rust_matches_reference_with_the_position_terms(
     assert got.shape == x.shape
     # Rounding is relative to what is summed: where the position force's terms cancel each other
     # (and the friction is tiny), the two sums differ by an ulp of the terms, not of the total.
-    scale = np.max(np.abs(expected) + term_magnitude(force, x), initial=0.0)
-    error = float(np.max(np.abs(got - expected), initial=0.0)) / scale if scale > 0 else 0.0
+    error = max_relative_error(got, expected, term_magnitude(force, x))
     assert error <= TOLERANCE, f"max relative error {error:.3g}"
 
 
