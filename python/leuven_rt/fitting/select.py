@@ -509,7 +509,7 @@ def _rounds(
         if not left:
             break
         say(f"round {len(steps) + 1}: trying {', '.join(left)}")
-        found = _candidates(current, left, scales, target)
+        found = _candidates(current, left, scales, target, settings.significance * unit)
         candidates = [c for c in found if c is not None]
         tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
         best = _choose(current, candidates, target, settings, unit)
@@ -553,24 +553,29 @@ def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> 
     return _extend(current, effect, scales, target, SCREEN)
 
 
-def _candidates(current: Fitted, effects: list[str], scales: Scales, target: Target) -> list[Fitted | None]:
+def _candidates(
+    current: Fitted, effects: list[str], scales: Scales, target: Target, counts: float
+) -> list[Fitted | None]:
     """Each of ``effects`` added to ``current`` (:func:`_candidate`); an asymmetry also started
     where the offset's candidate stands, its offset moved into the two directions' levels, and the
     better of the two kept. Levels of their own for −x hold every offset smaller than both levels
     (Fc + o for +x, Fc − o for −x), but started at the symmetric model a screened fit does not
     always find the shift the offset finds in one coordinate; so started, the asymmetry gains at
     least what the offset gains, and the rounds choose between the two on what the −x levels
-    add beyond a shift. (Continuing the offset's fit for as many iterations named nothing on a
+    add beyond a shift. The second start is fitted only where it can change the choice: the
+    offset's candidate gains more than ``counts`` (in weighted mean squared error) and more than
+    the asymmetry's. (Continuing the offset's fit for as many iterations named nothing on a
     log with pink noise whose offset did not gain one-sidedly alone: family held_17 of seed base
     3000.)"""
     found = {effect: _candidate(current, effect, scales, target) for effect in effects}
     shifted, offset = found.get("asymmetry"), found.get("offset")
-    if shifted is not None and offset is not None:
-        start = _offset_in_levels(offset.theta)
-        if start is not None:
-            moved = fit(shifted.structure, scales, target, start, SCREEN)
-            if moved.mse < shifted.mse:
-                found["asymmetry"] = moved
+    if shifted is None or offset is None or current.mse - offset.mse <= counts or offset.mse >= shifted.mse:
+        return [found[effect] for effect in effects]
+    start = _offset_in_levels(offset.theta)
+    if start is not None:
+        moved = fit(shifted.structure, scales, target, start, SCREEN)
+        if moved.mse < shifted.mse:
+            found["asymmetry"] = moved
     return [found[effect] for effect in effects]
 
 
