@@ -115,7 +115,14 @@ def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
     target, scales = rounds_target(record)
     structure = Structure(frozenset({"coulomb", "viscous", "stribeck"}))
     current = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 5.0})
-    shifted, offset = select._candidates(current, ["asymmetry", "offset"], scales, target)
+    shifted, offset = select._candidates(current, ["asymmetry", "offset"], scales, target, 0.0)
     assert shifted is not None and offset is not None
     assert shifted.mse < offset.mse < current.mse
+    # Where the offset's gain does not count, the second start could not change the choice and
+    # is not fitted: the asymmetry is the one started at the symmetric model.
+    plain = select._candidate(current, "asymmetry", scales, target)
+    assert plain is not None and shifted.mse <= plain.mse
+    gained = current.mse - offset.mse
+    unchanged, _ = select._candidates(current, ["asymmetry", "offset"], scales, target, gained)
+    assert unchanged is not None and unchanged.mse == plain.mse
     assert lr.diagnose(record).named_effects == ["stribeck", "asymmetry"]

@@ -617,10 +617,27 @@ def _significant(
     current: Fitted, candidate: Fitted, target: Target, threshold: float, settings: Settings
 ) -> bool:
     """The candidate gains more than ``threshold`` in weighted mean squared error, and its gain
-    is one-sided over ``settings.chunks`` runs of samples in time."""
+    is one-sided over ``settings.chunks`` runs of samples in time: on the weighted samples, or on
+    every sample a prediction is judged on.
+
+    The second reading is for the effects that act where an encoder cannot place a reversal:
+    those samples are weighed out of the fit, and what a presliding bank gains shows mostly
+    there. Family held_24 of seed base 5000 (closed loop, 500 Hz, 2^18 counts per turn, no `v`):
+    the bank gained 0.98 units on the weighted samples, not one-sidedly (lost/won 0.35), while
+    the error over every sample fell from 0.84 to 0.39 N·m; without it the file held inertia
+    alone, at 0.75 N·m against the bound of 0.42."""
     if not current.mse - candidate.mse > threshold:
         return False
-    gain = target.losses(current.force) - target.losses(candidate.force)
+    weighted = target.losses(current.force) - target.losses(candidate.force)
+    if _one_sided(weighted, settings):
+        return True
+    every = target.unweighted(current.force) - target.unweighted(candidate.force)
+    return _one_sided(np.where(target.judged, every, 0.0), settings)
+
+
+def _one_sided(gain: FloatArray, settings: Settings) -> bool:
+    """The runs of samples where ``gain`` is negative lose less than ``settings.loss`` times what
+    the others win, over ``settings.chunks`` runs in time."""
     runs = np.array([part.sum() for part in np.array_split(gain, settings.chunks)])
     won, lost = runs[runs > 0].sum(), -runs[runs < 0].sum()
     return bool(lost < settings.loss * won)

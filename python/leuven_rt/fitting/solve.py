@@ -87,12 +87,17 @@ class Target:
     """With a scale, errors are counted robustly (``LOSS`` at this scale): a sample missed by far
     more than the scale counts little more than one missed by the scale."""
 
-    def losses(self, model_force: FloatArray) -> FloatArray:
-        """Each sample's weighted loss: the squared error, or its robust form with a scale."""
+    def unweighted(self, model_force: FloatArray) -> FloatArray:
+        """Each sample's loss before its weight: the squared error, or its robust form with a
+        scale."""
         square = (model_force - self.force) ** 2
         if self.scale is not None:
             square = robust(square, self.scale)
-        out: FloatArray = self.weight * square
+        return square
+
+    def losses(self, model_force: FloatArray) -> FloatArray:
+        """Each sample's weighted loss (:meth:`unweighted` times the weight)."""
+        out: FloatArray = self.weight * self.unweighted(model_force)
         return out
 
     def mse(self, model_force: FloatArray) -> float:
