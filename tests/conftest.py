@@ -7,10 +7,14 @@ so that every test can pass them to either implementation or to ``Params``.
 from __future__ import annotations
 
 import ctypes
+import functools
+import importlib.util
 import json
 import shutil
 import subprocess
+import sys
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -130,6 +134,18 @@ def small_log(**changes: Any) -> dict[str, Any]:
     base: dict[str, Any] = {"t": t, "x": 1e-3 * np.sin(2 * np.pi * t), "f": np.cos(2 * np.pi * t)}
     base.update(changes)
     return {key: value for key, value in base.items() if value is not None}
+
+
+@functools.cache
+def family() -> ModuleType:
+    """``benches/family.py``, the generator of the family of logs, as a module."""
+    path = Path(__file__).resolve().parents[1] / "benches" / "family.py"
+    spec = importlib.util.spec_from_file_location("leuven_rt_bench_family", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses look their module up while being made
+    spec.loader.exec_module(module)
+    return module
 
 
 def max_relative_error(a: np.ndarray, b: np.ndarray, magnitude: np.ndarray | None = None) -> float:

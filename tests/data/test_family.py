@@ -18,11 +18,11 @@ from typing import Any
 import numpy as np
 import pytest
 
+from conftest import family as load_family
 from leuven_rt import simulate
 from leuven_rt.data import as_motion_data
 
 ROOT = Path(__file__).resolve().parents[2]
-FAMILY_SCRIPT = ROOT / "benches" / "family.py"
 SCORER = ROOT.parent / "shared" / "tools" / "score_diagnose.py"
 #: The keys the scorer reads from a manifest entry, and their types.
 SCORER_KEYS: dict[str, Any] = {
@@ -45,7 +45,7 @@ def _load(name: str, path: Path) -> ModuleType:
     return module
 
 
-family = _load("leuven_rt_bench_family", FAMILY_SCRIPT)
+family = load_family()
 
 
 @pytest.fixture(scope="module")

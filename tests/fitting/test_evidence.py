@@ -3,16 +3,12 @@ an encoder cannot place, and the encoder's step."""
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
-from types import ModuleType
-
 import numpy as np
 import pytest
 from scipy import signal
 
 import leuven_rt as lr
+from conftest import family
 from leuven_rt.data.reconstruction import (
     ambiguous_samples,
     held_by_drive,
@@ -179,24 +175,13 @@ def test_the_rounds_weigh_out_a_wandering_stop_only_where_a_velocity_drives_the_
     assert np.all(by_encoder.weight[340:480] > 0)
 
 
-def _family() -> ModuleType:
-    path = Path(__file__).resolve().parents[2] / "benches" / "family.py"
-    spec = importlib.util.spec_from_file_location("leuven_rt_bench_family_evidence", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses look their module up while being made
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_a_bank_whose_gain_sits_at_the_reversals_an_encoder_cannot_place_counts() -> None:
     # The family's held_24 of seed base 5000: a mass under a PID loop at 500 Hz, 2^18 counts per
     # turn, no velocity logged; the bank spans 22 counts and the servo reverses 192 times in 10 s.
     # On the weighted samples the bank's gain is not one-sided (lost/won 0.35); on every sample
     # predict judges, it takes out half of the error. Counted on the weighted ones alone, the file
     # held inertia alone, at 0.75 N·m.
-    family = _family()
-    log = family.make_log(family.draw_case("held-out", 23, seed_base=5000))
+    log = family().make_log(family().draw_case("held-out", 23, seed_base=5000))
     record = MotionData(log.t, log.x, log.f)
     found = lr.identify(record)
     assert "presliding_hysteresis" in found.diagnosis.named_effects
