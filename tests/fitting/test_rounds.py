@@ -126,3 +126,35 @@ def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
     unchanged, _ = select._candidates(current, ["asymmetry", "offset"], scales, target, gained)
     assert unchanged is not None and unchanged.mse == plain.mse
     assert lr.diagnose(record).named_effects == ["stribeck", "asymmetry"]
+
+
+def fast_stribeck() -> MotionData:
+    """Sweeps over three decades of speed, logged with the velocity, of friction whose Stribeck
+    curve falls off near the top of them (Vs = 0.05 against speeds of 2e-4 to 0.2), force noise
+    0.01."""
+    dt = 1e-3
+    rng = np.random.default_rng(2)
+    speeds = np.geomspace(2e-4, 0.2, 10)
+    pieces = []
+    for speed in rng.permutation(np.concatenate([speeds, -speeds])):
+        ramp = np.linspace(0.0, speed, 40)
+        pieces += [ramp, np.full(400, speed), ramp[::-1], np.zeros(60)]
+    v = np.concatenate(pieces)
+    t = np.arange(v.size) * dt
+    x = np.round(np.cumsum(v) * dt / 1e-7) * 1e-7
+    truth = lr.Params(Fc=1.0, Fs=1.6, Vs=0.05, delta=2.0, n=2.0, sigma2=2.0, W=[3.0], Delta=[1e-9])
+    f = lr.simulate(truth, v, dt) + rng.normal(0.0, 0.01, v.size)
+    return MotionData(t, x, f, v=v)
+
+
+def test_a_stribeck_curve_far_from_the_middle_speed_is_found() -> None:
+    record = fast_stribeck()
+    target, scales = rounds_target(record)
+    structure = Structure(frozenset({"coulomb", "viscous"}))
+    base = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 2.0})
+    # Started flat (Fs = Fc), Vs and δ have no gradient: the fit raises Fs at the middle speed only.
+    flat = fit(structure.with_effect("stribeck"), scales, target, base.theta, select.SCREEN)
+    found = select._extend(base, "stribeck", scales, target, select.SCREEN)
+    assert found is not None
+    assert found.mse < 0.5 * flat.mse
+    assert found.mse < 2.0 * 0.01**2
