@@ -521,11 +521,12 @@ def _rounds(
         best = _choose(current, candidates, target, settings, unit)
         if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
             ranked = sorted((c for c in candidates if c.mse < current.mse), key=lambda c: c.mse)[:PAIRED]
-            pairs = []
-            for first, second in itertools.combinations(ranked, 2):
-                pair = _extend(first, _added(current, second), scales, target, SCREEN)
-                if pair is not None:
-                    pairs.append(pair)
+            extended = [
+                _extend(first, _added(current, second), scales, target, SCREEN)
+                for first, second in itertools.combinations(ranked, 2)
+            ]
+            counts = settings.significance * unit
+            pairs = [pair for pair in _shifted(current, extended, scales, target, counts) if pair is not None]
             best = _choose(current, pairs, target, settings, unit)
         if best is None:
             break
@@ -562,27 +563,48 @@ def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> 
 def _candidates(
     current: Fitted, effects: list[str], scales: Scales, target: Target, counts: float
 ) -> list[Fitted | None]:
-    """Each of ``effects`` added to ``current`` (:func:`_candidate`); an asymmetry also started
-    where the offset's candidate stands, its offset moved into the two directions' levels, and the
-    better of the two kept. Levels of their own for −x hold every offset smaller than both levels
-    (Fc + o for +x, Fc − o for −x), but started at the symmetric model a screened fit does not
-    always find the shift the offset finds in one coordinate; so started, the asymmetry gains at
-    least what the offset gains, and the rounds choose between the two on what the −x levels
-    add beyond a shift. The second start is fitted only where it can change the choice: the
-    offset's candidate gains more than ``counts`` (in weighted mean squared error) and more than
-    the asymmetry's. (Continuing the offset's fit for as many iterations named nothing on a
-    log with pink noise whose offset did not gain one-sidedly alone: family held_17 of seed base
-    3000.)"""
-    found = {effect: _candidate(current, effect, scales, target) for effect in effects}
-    shifted, offset = found.get("asymmetry"), found.get("offset")
-    if shifted is None or offset is None or current.mse - offset.mse <= counts or offset.mse >= shifted.mse:
-        return [found[effect] for effect in effects]
-    start = _offset_in_levels(offset.theta)
-    if start is not None:
-        moved = fit(shifted.structure, scales, target, start, SCREEN)
-        if moved.mse < shifted.mse:
-            found["asymmetry"] = moved
-    return [found[effect] for effect in effects]
+    """Each of ``effects`` added to ``current`` (:func:`_candidate`), the asymmetry's also
+    started from the offset's (:func:`_shifted`)."""
+    found = [_candidate(current, effect, scales, target) for effect in effects]
+    return _shifted(current, found, scales, target, counts)
+
+
+def _shifted(
+    current: Fitted, found: Sequence[Fitted | None], scales: Scales, target: Target, counts: float
+) -> list[Fitted | None]:
+    """``found`` (candidates extending ``current``), where one adds an asymmetry and another the
+    same with an offset in its place, the asymmetry's also started where the offset's stands, its
+    offset moved into the two directions' levels, and the better of the two kept.
+
+    Levels of their own for −x hold every offset smaller than both levels (Fc + o for +x, Fc − o
+    for −x), but started at the symmetric model a screened fit does not always find the shift the
+    offset finds in one coordinate; so started, the asymmetry gains at least what the offset
+    gains, and the rounds choose between the two on what the −x levels add beyond a shift. The
+    second start is fitted only where it can change the choice: the offset's candidate gains more
+    than ``counts`` (in weighted mean squared error) and more than the asymmetry's. (Continuing
+    the offset's fit for as many iterations named nothing on a log with pink noise whose offset
+    did not gain one-sidedly alone: family held_17 of seed base 3000.)"""
+    added = {
+        frozenset(candidate.structure.effects - current.structure.effects): candidate
+        for candidate in found
+        if candidate is not None
+    }
+    out = list(found)
+    for place, candidate in enumerate(found):
+        if candidate is None:
+            continue
+        new = frozenset(candidate.structure.effects - current.structure.effects)
+        if "asymmetry" not in new or "offset" in new:
+            continue
+        offset = added.get(new - {"asymmetry"} | {"offset"})
+        if offset is None or not current.mse - offset.mse > counts or offset.mse >= candidate.mse:
+            continue
+        start = _offset_in_levels(offset.theta)
+        if start is not None:
+            moved = fit(candidate.structure, scales, target, start, SCREEN)
+            if moved.mse < candidate.mse:
+                out[place] = moved
+    return out
 
 
 def _offset_in_levels(theta: dict[str, float]) -> dict[str, float] | None:
