@@ -87,23 +87,30 @@ def test_a_position_dependence_about_to_be_taken_out_is_found_anew() -> None:
     assert final.mse < 1.2 * NOISE**2
 
 
-def asymmetric_plateaus() -> MotionData:
-    """Velocity plateaus over two decades in both directions, each ramped up from a stop and back:
-    Stribeck friction whose every −x level is 1.3 times the +x one (Fc 0.8 and 1.04, Fs 1.24 and
-    1.61), logged with its velocity, force noise 0.012."""
+def plateaus(
+    speeds: np.ndarray, ramp: int, hold: int, rest: int, rng: np.random.Generator
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """t, x (a 0.1 µm encoder) and v of velocity plateaus at ``speeds`` in both directions, in a
+    random order, each ramped up from a stop over ``ramp`` samples, held ``hold``, ramped down
+    and resting ``rest``; 1 kHz."""
     dt = 1e-3
-    rng = np.random.default_rng(0)
-    speeds = np.geomspace(2e-4, 2e-2, 8)
     pieces = []
     for speed in rng.permutation(np.concatenate([speeds, -speeds])):
-        ramp = np.linspace(0.0, speed, 50)
-        pieces += [ramp, np.full(600, speed), ramp[::-1], np.zeros(100)]
+        up = np.linspace(0.0, speed, ramp)
+        pieces += [up, np.full(hold, speed), up[::-1], np.zeros(rest)]
     v = np.concatenate(pieces)
-    t = np.arange(v.size) * dt
     x = np.round(np.cumsum(v) * dt / 1e-7) * 1e-7
+    return np.arange(v.size) * dt, x, v
+
+
+def asymmetric_plateaus() -> MotionData:
+    """Plateaus over two decades of speed: Stribeck friction whose every −x level is 1.3 times the
+    +x one (Fc 0.8 and 1.04, Fs 1.24 and 1.61), logged with its velocity, force noise 0.012."""
+    rng = np.random.default_rng(0)
+    t, x, v = plateaus(np.geomspace(2e-4, 2e-2, 8), 50, 600, 100, rng)
     truth = lr.Params(Fc=0.8, Fs=1.24, Vs=1e-3, delta=1.5, n=2.0, sigma2=5.9, W=[2.6], Delta=[1e-9],
                       Fc_neg=1.04, Fs_neg=1.61, sigma2_neg=5.9)  # fmt: skip
-    f = lr.simulate(truth, v, dt) + rng.normal(0.0, 0.012, v.size)
+    f = lr.simulate(truth, v, t[1] - t[0]) + rng.normal(0.0, 0.012, v.size)
     return MotionData(t, x, f, v=v)
 
 
@@ -129,21 +136,13 @@ def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
 
 
 def fast_stribeck() -> MotionData:
-    """Sweeps over three decades of speed, logged with the velocity, of friction whose Stribeck
+    """Plateaus over three decades of speed, logged with the velocity, of friction whose Stribeck
     curve falls off near the top of them (Vs = 0.05 against speeds of 2e-4 to 0.2), force noise
     0.01."""
-    dt = 1e-3
     rng = np.random.default_rng(2)
-    speeds = np.geomspace(2e-4, 0.2, 10)
-    pieces = []
-    for speed in rng.permutation(np.concatenate([speeds, -speeds])):
-        ramp = np.linspace(0.0, speed, 40)
-        pieces += [ramp, np.full(400, speed), ramp[::-1], np.zeros(60)]
-    v = np.concatenate(pieces)
-    t = np.arange(v.size) * dt
-    x = np.round(np.cumsum(v) * dt / 1e-7) * 1e-7
+    t, x, v = plateaus(np.geomspace(2e-4, 0.2, 10), 40, 400, 60, rng)
     truth = lr.Params(Fc=1.0, Fs=1.6, Vs=0.05, delta=2.0, n=2.0, sigma2=2.0, W=[3.0], Delta=[1e-9])
-    f = lr.simulate(truth, v, dt) + rng.normal(0.0, 0.01, v.size)
+    f = lr.simulate(truth, v, t[1] - t[0]) + rng.normal(0.0, 0.01, v.size)
     return MotionData(t, x, f, v=v)
 
 
