@@ -6,12 +6,14 @@ of the model file that holds it.
 2. The noise σ and the floor (:mod:`.floor`) set the unit of evidence,
    unit = max(σ², floor²) over the weighted samples.
 3. Each round fits every effect not yet in the model, each candidate starting at the model it
-   extends (so a candidate can only gain), and adds the one whose gain in weighted mean squared
-   error exceeds ``significance``·unit and is one-sided in time (the runs of samples where it
-   does worse lose less than ``loss`` times what the others gain); among those within
-   ``significance``·unit of the best, the one with the fewest parameters (an asymmetry is
-   also started where the offset's candidate stands: :func:`_candidates`). When none counts
-   alone and the model is still more than ``joint``·unit above σ², pairs are tried.
+   extends (so a candidate can only gain; a Stribeck curve also started raised,
+   :func:`_stribeck`, and an asymmetry where the offset's candidate stands, :func:`_shifted`),
+   and adds the one whose gain in weighted mean squared error exceeds ``significance``·unit and
+   is one-sided in time (the runs of samples where it does worse lose less than ``loss`` times
+   what the others gain, on the weighted samples or on every sample: :func:`_significant`);
+   among those within ``significance``·unit of the best, the one with the fewest parameters.
+   When none counts alone and the model is still more than ``joint``·unit above σ², pairs are
+   tried.
 4. A level drifting over the record (outside the catalogue) is fitted alongside when it gains
    ``drift``·unit, and the rounds are run again with it; it is reported, never written.
 """
@@ -510,12 +512,13 @@ def _rounds(
 ) -> tuple[list[Step], Fitted, list[tuple[str, float]]]:
     steps: list[Step] = []
     tried: list[tuple[str, float]] = []
+    counts = settings.significance * unit
     while True:
         left = [name for name in CATALOGUE if not current.structure.has(name)]
         if not left:
             break
         say(f"round {len(steps) + 1}: trying {', '.join(left)}")
-        found = _candidates(current, left, scales, target, settings.significance * unit)
+        found = _candidates(current, left, scales, target, counts)
         candidates = [c for c in found if c is not None]
         tried = [(_added(current, c), (current.mse - c.mse) / unit) for c in candidates]
         best = _choose(current, candidates, target, settings, unit)
@@ -525,7 +528,6 @@ def _rounds(
                 _extend(first, _added(current, second), scales, target, SCREEN)
                 for first, second in itertools.combinations(ranked, 2)
             ]
-            counts = settings.significance * unit
             pairs = [pair for pair in _shifted(current, extended, scales, target, counts) if pair is not None]
             best = _choose(current, pairs, target, settings, unit)
         if best is None:
@@ -781,10 +783,11 @@ def choose_reconstruction(
         if not np.mean(_judged_error(force, on) ** 2) < errors[best]:
             continue
         trial = fit(fitted.structure, scales, on, theta, iterations)
-        if full_mse(trial, on) < errors[best]:
+        error = full_mse(trial, on)
+        if error < errors[best]:
             prepared.append((option, on, scales))
             refitted.append(trial)
-            errors.append(full_mse(trial, on))
+            errors.append(error)
             best = len(prepared) - 1
     reconstruction, target, scales = prepared[best]
     if sample is not None:
