@@ -79,7 +79,7 @@ def test_a_position_dependence_about_to_be_taken_out_is_found_anew() -> None:
                 base.theta)  # fmt: skip
     assert base.mse - stale.mse < 0.5 * NOISE**2
     steps = [select.Step("position_dependence", base, stale)]
-    final, kept = select._prune(base, stale, steps, scales, target, Settings(), NOISE**2, lambda _: None)
+    final, kept, _ = select._prune(base, stale, steps, scales, target, Settings(), NOISE**2, lambda _: None)
     assert final.structure.has("position_dependence")
     assert final.structure.periods[0] == pytest.approx(RIPPLE_PERIOD, rel=0.03)
     assert [step.effect for step in kept] == ["position_dependence"]

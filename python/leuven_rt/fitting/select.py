@@ -120,7 +120,8 @@ class Selection:
     """The final structure without the drift: the model that is written."""
     unit: float
     tried: list[tuple[str, float]]
-    """Every candidate of the last round with its gain, in units."""
+    """Every candidate of the last round, and every effect taken out again, with its gain in
+    units."""
     file_reconstruction: Reconstruction
     """How the written file reconstructs the motion: the one under which it predicts the log best."""
     file_target: Target
@@ -300,7 +301,8 @@ def _both_ways(
     steps, final, tried = _rounds(base, scales, target, settings, permissive, say)
     noise, floor, unit = _evidence(final, target, floor, scales)
     target, final = _rescaled(final, scales, target, noise)
-    final, steps = _prune(base, final, steps, scales, target, settings, unit, say)
+    final, steps, taken_out = _prune(base, final, steps, scales, target, settings, unit, say)
+    tried = tried + taken_out
     final, steps = _exchange(base, final, steps, scales, target, settings, unit, say)
     if steps and steps[-1].after is not final:  # refitted at the backward round's scale
         steps[-1] = Step(steps[-1].effect, steps[-1].before, final)
@@ -373,9 +375,10 @@ def _prune(
     settings: Settings,
     unit: float,
     say: Progress,
-) -> tuple[Fitted, list[Step]]:
+) -> tuple[Fitted, list[Step], list[tuple[str, float]]]:
     """``final`` without every added effect that its removal costs less than the threshold, one
-    at a time, the least useful first; and the steps that add the remaining ones in their order.
+    at a time, the least useful first; the steps that add the remaining ones in their order; and
+    the effects taken out with what each gained, in units.
 
     A position dependence about to be taken out is first found anew (:data:`REFOUND`): its form
     and ripple period were chosen in what the model left when it was added, and the effects added
@@ -385,6 +388,7 @@ def _prune(
     threshold = settings.significance * unit
     changed = False
     refound: set[str] = set()
+    taken_out: list[tuple[str, float]] = []
     while added:
         options = []
         for effect in added:
@@ -402,13 +406,14 @@ def _prune(
                 final = fit(fresh.structure, scales, target, fresh.theta)
                 changed = True
                 continue
-        say(f"taken out again: {effect} (gains only {(reduced.mse - final.mse) / unit:.2f} units)")
+        taken_out.append((effect, (reduced.mse - final.mse) / unit))
+        say(f"taken out again: {effect} (gains only {taken_out[-1][1]:.2f} units)")
         final = fit(reduced.structure, scales, target, reduced.theta)
         added.remove(effect)
         changed = True
     if not changed:
-        return final, steps
-    return final, _regrow(base, final, added, scales, target)
+        return final, steps, taken_out
+    return final, _regrow(base, final, added, scales, target), taken_out
 
 
 def _form(structure: Structure) -> str:
@@ -457,14 +462,14 @@ def _drifting(
     unit: float,
 ) -> bool:
     """Whether a drift of the level counts beside ``final``: alone, or beside an effect of the
-    last round that gained more than the threshold but not evenly over time (``tried``: the last
-    round's candidates and their gains in units). A level that drifts makes an effect's gain
-    uneven in time (it helps where the drift is small and harms where it is large), so neither
-    the effect nor the drift counts alone; the drift counts when, fitted beside that effect, it
-    gains ``drift`` units over the effect alone, one-sided, and the two together gain over
-    ``final``. Each fit is screened like a candidate: only the decision is kept (with a drift
-    the rounds run again from the baseline), and a drift gains what it gains within the first
-    few iterations."""
+    last round that gained more than the threshold but not evenly over time, or that was taken
+    out again for it (``tried``: those effects and their gains in units). A level that drifts
+    makes an effect's gain uneven in time (it helps where the drift is small and harms where it
+    is large), so neither the effect nor the drift counts alone; the drift counts when, fitted
+    beside that effect, it gains ``drift`` units over the effect alone, one-sided, and the two
+    together gain over ``final``. Each fit is screened like a candidate: only the decision is
+    kept (with a drift the rounds run again from the baseline), and a drift gains what it gains
+    within the first few iterations."""
     drift, effect_alone = settings.drift * unit, settings.significance * unit
     drifting = fit(final.structure.with_drift(), scales, target, final.theta, SCREEN)
     if _significant(final, drifting, target, drift, settings):
