@@ -198,7 +198,7 @@ def _stiff_deflection(
     def error(multiple: float) -> float:
         trial = dataclasses.replace(scales, stiff=scales.stiff * multiple)
         force = evaluate(written.structure, trial, written.theta, target.motion, target.tau, None).force
-        return float(np.mean(_judged_error(force, target) ** 2))
+        return _judged_mse(force, target)
 
     # A grid, not a descent: the error is flat wherever the element saturates within a sample.
     # Its first point is the default, which ``written`` was simulated at already.
@@ -752,7 +752,12 @@ def reconstruction_options(record: MotionData, noisy: bool) -> list[Reconstructi
 def full_mse(fitted: Fitted, target: Target) -> float:
     """The mean squared simulation error over the samples ``target`` judges (every sample but the
     filters' edges): what :func:`leuven_rt.predict` reports, whatever the weights."""
-    return float(np.mean(_judged_error(fitted.force, target) ** 2))
+    return _judged_mse(fitted.force, target)
+
+
+def _judged_mse(force: FloatArray, target: Target) -> float:
+    """The mean squared error of ``force`` over the samples ``target`` judges."""
+    return float(np.mean(_judged_error(force, target) ** 2))
 
 
 def _judged_error(force: FloatArray, target: Target) -> FloatArray:
@@ -771,26 +776,22 @@ def choose_reconstruction(
     reversals the rounds leave out included): the error at a reversal is part of what a
     compensator driven by this signal gives. Whether the written file is then counted robustly is
     :func:`_robustly`'s choice."""
-    prepared: list[tuple[Reconstruction, Target, Scales]] = []
-    for option in reconstruction_options(record, noisy):
-        try:
-            whole, scales = _file_target(record, option, noisy)
-        except DataError:
-            continue
-        prepared.append((option, whole if sample is None else sample.of(whole, FIT_ROWS), scales))
+    options = (
+        _option_target(record, option, noisy, sample) for option in reconstruction_options(record, noisy)
+    )
+    prepared = [one for one in options if one is not None]
     refitted = [fit(fitted.structure, on[2], on[1], fitted.theta, iterations) for on in prepared]
     errors = [full_mse(one, on[1]) for one, on in zip(refitted, prepared, strict=True)]
     # The first of the lowest: the order of the options breaks ties.
     best = min(range(len(prepared)), key=errors.__getitem__)
     for option in _between(record, prepared[best][0]):
-        try:
-            whole, scales = _file_target(record, option, noisy)
-        except DataError:
+        between = _option_target(record, option, noisy, sample)
+        if between is None:
             continue
-        on = whole if sample is None else sample.of(whole, FIT_ROWS)
+        _, on, scales = between
         theta = refitted[best].theta
         force = evaluate(fitted.structure, scales, theta, on.motion, on.tau, None).force
-        if not np.mean(_judged_error(force, on) ** 2) < errors[best]:
+        if not _judged_mse(force, on) < errors[best]:
             continue
         trial = fit(fitted.structure, scales, on, theta, iterations)
         error = full_mse(trial, on)
@@ -803,6 +804,18 @@ def choose_reconstruction(
     if sample is not None:
         target = _file_target(record, reconstruction, noisy)[0]
     return reconstruction, target, scales, refitted[best]
+
+
+def _option_target(
+    record: MotionData, option: Reconstruction, noisy: bool, sample: Sample | None
+) -> tuple[Reconstruction, Target, Scales] | None:
+    """``option`` with the target its file is fitted on (on ``sample`` when given) and its
+    scales; None where the record does not support it."""
+    try:
+        whole, scales = _file_target(record, option, noisy)
+    except DataError:
+        return None
+    return option, whole if sample is None else sample.of(whole, FIT_ROWS), scales
 
 
 def _between(record: MotionData, chosen: Reconstruction) -> list[Reconstruction]:
