@@ -11,6 +11,7 @@ import leuven_rt as lr
 from conftest import family
 from leuven_rt.data.reconstruction import (
     ambiguous_samples,
+    before_first_count,
     held_by_drive,
     median_excursion,
     noisy_position,
@@ -186,3 +187,19 @@ def test_a_bank_whose_gain_sits_at_the_reversals_an_encoder_cannot_place_counts(
     found = lr.identify(record)
     assert "presliding_hysteresis" in found.diagnosis.named_effects
     assert lr.predict(found.model, record).rms < 1.2 * log.floor_rms
+
+
+def test_the_force_held_before_the_axis_first_moves_is_not_evidence() -> None:
+    # The family's held_08 of seed base 7000: a closed loop at 4 kHz that starts at rest, its drive
+    # at zero while friction holds a 5 N load. A model with the offset and no friction held
+    # predicts the load there; an asymmetry predicts nothing, and won by those 900 samples alone.
+    log = family().make_log(family().draw_case("held-out", 7, seed_base=7000))
+    assert before_first_count(log.x).sum() > 800
+    found = lr.identify(MotionData(log.t, log.x, log.f))
+    assert sorted(found.diagnosis.named_effects) == ["inertia", "offset"]
+
+
+def test_the_samples_before_the_first_count_are_those_at_the_start_position() -> None:
+    x = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 0.0])
+    assert before_first_count(x).tolist() == [True, True, True, False, False, False]
+    assert before_first_count(np.zeros(4)).all()

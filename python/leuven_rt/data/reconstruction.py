@@ -144,6 +144,16 @@ REST_SHARE = 1e-3
 WANDER = 3.0
 
 
+def before_first_count(x: FloatArray) -> NDArray[np.bool_]:
+    """Samples before the encoder first counts. The force the axis holds there rests on the state
+    the log began in, which the log does not give: a closed loop started at rest holds a load with
+    friction while its drive outputs nothing, and a model starts with no friction held."""
+    out = np.zeros(x.size, dtype=bool)
+    counts = np.flatnonzero(np.diff(x))
+    out[: int(counts[0]) + 1 if counts.size else x.size] = True
+    return out
+
+
 def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
     """Samples where a log with a velocity column shows the axis stopped while the force wanders:
     runs of at least :data:`REST_RUN` samples where the encoder does not count and the velocity
@@ -241,6 +251,7 @@ def filter_margin(reconstruction: Reconstruction, dt: float) -> int:
 __all__ = [
     "Motion",
     "ambiguous_samples",
+    "before_first_count",
     "describe",
     "differences",
     "filter_margin",
