@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import leuven_rt as lr
+from conftest import family
 from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
@@ -157,3 +158,45 @@ def test_a_stribeck_curve_far_from_the_middle_speed_is_found() -> None:
     assert found is not None
     assert found.mse < 0.5 * flat.mse
     assert found.mse < 2.0 * 0.01**2
+
+
+def loaded_plateaus() -> MotionData:
+    """Velocity plateaus as in :func:`asymmetric_plateaus`, of Stribeck friction under a constant
+    load of 0.3 (an offset), whose −x levels are 1 % above the +x ones (an asymmetry far below what
+    the log can tell), logged with the velocity, force noise 0.012."""
+    rng = np.random.default_rng(1)
+    t, x, v = plateaus(np.geomspace(2e-4, 2e-2, 8), 50, 600, 100, rng)
+    truth = lr.Params(Fc=0.8, Fs=1.24, Vs=1e-3, delta=1.5, n=2.0, sigma2=5.9, W=[2.6], Delta=[1e-9],
+                      Fc_neg=0.808, Fs_neg=1.2524, sigma2_neg=5.9)  # fmt: skip
+    f = lr.simulate(truth, v, t[1] - t[0]) + 0.3 + rng.normal(0.0, 0.012, v.size)
+    return MotionData(t, x, f, v=v)
+
+
+def test_of_an_offset_and_an_asymmetry_that_hold_each_other_the_one_with_fewer_parameters_stays() -> None:
+    # Levels of their own for −x hold any offset, so with both in the model the offset costs
+    # nothing to take out, and the asymmetry little (0.006 units here): taking out the cheapest
+    # removal first kept the asymmetry's three parameters (family held_21 of seed base 3000,
+    # inertia + offset + Stribeck, was named with an asymmetry). Among the removals that do not
+    # count, the one leaving the fewest parameters goes first, as the rounds choose among additions.
+    record = loaded_plateaus()
+    target, scales = rounds_target(record)
+    structure = Structure(frozenset({"coulomb", "viscous", "stribeck"}))
+    base = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 5.0})
+    loaded = fit(structure.with_effect("offset"), scales, target, base.theta)
+    both = fit(loaded.structure.with_effect("asymmetry"), scales, target, loaded.theta)
+    steps = [select.Step("offset", base, loaded), select.Step("asymmetry", loaded, both)]
+    final, kept, taken_out = select._prune(base, both, steps, scales, target, Settings(), 0.012**2, print)
+    assert [effect for effect, _ in taken_out] == ["asymmetry"]
+    assert [step.effect for step in kept] == ["offset"]
+    assert final.theta["offset"] == pytest.approx(0.3, abs=0.01)
+
+
+def test_an_offset_beside_an_asymmetry_is_taken_out_from_where_the_levels_hold_it() -> None:
+    # The family's tune_18 (asymmetry + Stribeck): after the rounds the model held an offset
+    # beside its asymmetry and Stribeck curve. Refitted without the offset from the levels it
+    # held, a screened fit stopped far from the optimum, so the offset looked needed and the
+    # asymmetry, the least useful, was tried instead. Started also from the offset moved into
+    # the two directions' levels, the offset goes.
+    log = family().make_log(family().draw_case("tuning", 17))
+    found = lr.diagnose(MotionData(log.t, log.x, log.f, v=log.v))
+    assert sorted(found.named_effects) == ["asymmetry", "stribeck"]

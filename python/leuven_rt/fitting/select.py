@@ -378,8 +378,14 @@ def _prune(
     say: Progress,
 ) -> tuple[Fitted, list[Step], list[tuple[str, float]]]:
     """``final`` without every added effect that its removal costs less than the threshold, one
-    at a time, the least useful first; the steps that add the remaining ones in their order; and
-    the effects taken out with what each gained, in units.
+    at a time; the steps that add the remaining ones in their order; and the effects taken out
+    with what each gained, in units.
+
+    Each pass takes out, among the removals that cost less than the threshold and are within it
+    of the cheapest, the one that leaves the fewest parameters, as a round chooses among the
+    additions: two effects that can stand in for each other (an offset beside an asymmetry, whose
+    −x levels hold it) each cost nothing to remove while the other stays, and the cheaper by a
+    hair is not the one the log supports more.
 
     A position dependence about to be taken out is first found anew (:data:`REFOUND`): its form
     and ripple period were chosen in what the model left when it was added, and the effects added
@@ -391,13 +397,20 @@ def _prune(
     refound: set[str] = set()
     taken_out: list[tuple[str, float]] = []
     while added:
-        options = []
-        for effect in added:
-            structure = final.structure.without(effect)
-            options.append((effect, fit(structure, scales, target, _held(final, structure, scales), SCREEN)))
-        effect, reduced = min(options, key=lambda option: option[1].mse)
-        if _significant(reduced, final, target, threshold, settings):
+        options = [(effect, _reduced(final, effect, scales, target, unit, say)) for effect in added]
+        cheapest = min(option[1].mse for option in options)
+        loose = [
+            option
+            for option in options
+            if option[1].mse <= cheapest + threshold
+            and not _significant(option[1], final, target, threshold, settings)
+        ]
+        if not loose:
             break
+        effect, reduced = min(loose, key=lambda option: (len(option[1].theta), option[1].mse))
+        if reduced.mse > cheapest:
+            least = min(options, key=lambda option: option[1].mse)[0]
+            say(f"{effect} before {least}: its removal leaves fewer parameters")
         if effect in REFOUND and effect not in refound:
             refound.add(effect)
             fresh = _extend(reduced, effect, scales, target, SCREEN)
@@ -415,6 +428,28 @@ def _prune(
     if not changed:
         return final, steps, taken_out
     return final, _regrow(base, final, added, scales, target), taken_out
+
+
+def _reduced(
+    final: Fitted, effect: str, scales: Scales, target: Target, unit: float, say: Progress
+) -> Fitted:
+    """``final`` without ``effect``, screened from where ``final`` stands; an offset beside an
+    asymmetry also started moved into the two directions' levels (:func:`_offset_in_levels`), and
+    the better of the two kept: the levels of their own for −x hold the offset, which the start
+    without it leaves to a screened fit to find."""
+    structure = final.structure.without(effect)
+    reduced = fit(structure, scales, target, _held(final, structure, scales), SCREEN)
+    if effect != "offset" or not structure.has("asymmetry"):
+        return reduced
+    start = _offset_in_levels(final.theta)
+    if start is None:
+        return reduced
+    moved = fit(structure, scales, target, start, SCREEN)
+    if not moved.mse < reduced.mse:
+        return reduced
+    gain = (reduced.mse - moved.mse) / unit
+    say(f"offset moved into the two directions' levels: {gain:.2f} units below its removal")
+    return moved
 
 
 def _form(structure: Structure) -> str:
@@ -616,18 +651,20 @@ def _shifted(
 
 
 def _offset_in_levels(theta: dict[str, float]) -> dict[str, float] | None:
-    """``theta`` of a symmetric model with an offset o as the θ of the same model without it and
-    with levels of its own for −x: Fc + o for +x and Fc − o for −x (the rises and σ2 the same);
-    None where a level would not stay positive."""
+    """``theta`` of a model with an offset o as the θ of the same model without it and with
+    levels of its own for −x: Fc + o for +x and Fc_neg − o for −x (Fc_neg = Fc where the model is
+    symmetric; the rises and σ2 the same, or the model's own for −x); None where a level would not
+    stay positive."""
     o = theta["offset"]
     fc = theta.get("Fc")
-    if fc is None or not fc > abs(o):
+    fc_neg = theta.get("Fc_neg", fc)
+    if fc is None or fc_neg is None or not fc + o > 0.0 or not fc_neg - o > 0.0:
         return None
     out = {name: value for name, value in theta.items() if name != "offset"}
-    out["Fc"], out["Fc_neg"] = fc + o, fc - o
-    if "Fs_rise" in theta:
+    out["Fc"], out["Fc_neg"] = fc + o, fc_neg - o
+    if "Fs_rise" in theta and "Fs_neg_rise" not in theta:
         out["Fs_neg_rise"] = theta["Fs_rise"]
-    if "sigma2" in theta:
+    if "sigma2" in theta and "sigma2_neg" not in theta:
         out["sigma2_neg"] = theta["sigma2"]
     return out
 
