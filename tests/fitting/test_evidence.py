@@ -3,6 +3,8 @@ an encoder cannot place, and the encoder's step."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy import signal
@@ -22,7 +24,11 @@ from leuven_rt.data.reconstruction import (
 from leuven_rt.data.records import MotionData
 from leuven_rt.data.signals import residual_noise
 from leuven_rt.fitting import select
+from leuven_rt.fitting.evaluate import Evaluation
 from leuven_rt.fitting.remains import functions, remains
+from leuven_rt.fitting.settings import Settings
+from leuven_rt.fitting.solve import Fitted
+from leuven_rt.fitting.structure import Structure
 from leuven_rt.modelfile import Reconstruction
 
 
@@ -203,3 +209,28 @@ def test_the_samples_before_the_first_count_are_those_at_the_start_position() ->
     x = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 0.0])
     assert before_first_count(x).tolist() == [True, True, True, False, False, False]
     assert before_first_count(np.zeros(4)).all()
+
+
+def test_a_gain_one_sided_only_over_every_sample_counts_only_where_the_position_drives_the_model() -> None:
+    # A candidate that wins on the weighted samples of the record's first half and loses on those
+    # of its second (not one-sided there), and takes out a large error at every sample weighed out
+    # (one-sided over every sample). Driven by the encoder, the samples weighed out are reversals
+    # it cannot place, where a bank's gain shows; driven by a logged velocity, they are stops the
+    # drive holds, where a bank follows the controller: there the second reading does not count.
+    x, v, f, dt = stop_and_creep(0.8)
+    record = MotionData(np.arange(x.size) * dt, x, f, v=v)
+    weight = np.where(np.arange(x.size) % 4 == 0, 0.0, 1.0)
+    first = np.arange(x.size) < x.size // 2
+    current_force = f + np.where(weight == 0.0, 1.0, np.where(first, 0.3, 0.0))
+    candidate_force = f + np.where(weight == 0.0, 0.0, np.where(first, 0.0, 0.2))
+    for reconstruction, counts in ((Reconstruction("position"), True), (Reconstruction("velocity"), False)):
+        prepared = select.prepare(record, reconstruction, False)[0]
+        target = dataclasses.replace(prepared, force=f, weight=weight, judged=np.ones(x.size, dtype=bool))
+        current, candidate = (
+            Fitted(Structure(frozenset({"coulomb"})), {}, Evaluation(None, force, None), target.mse(force), 1)  # type: ignore[arg-type]
+            for force in (current_force, candidate_force)
+        )
+        assert current.mse - candidate.mse > 0.02
+        weighted = target.losses(current.force) - target.losses(candidate.force)
+        assert not select._one_sided(weighted, Settings())
+        assert select._significant(current, candidate, target, 0.02, Settings()) is counts
