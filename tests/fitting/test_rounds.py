@@ -11,7 +11,7 @@ from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
 from leuven_rt.fitting.settings import Settings
-from leuven_rt.fitting.solve import Target, fit
+from leuven_rt.fitting.solve import Fitted, Target, fit
 from leuven_rt.fitting.structure import Scales, Structure
 
 NOISE = 0.2
@@ -104,15 +104,27 @@ def plateaus(
     return np.arange(v.size) * dt, x, v
 
 
-def asymmetric_plateaus() -> MotionData:
-    """Plateaus over two decades of speed: Stribeck friction whose every −x level is 1.3 times the
-    +x one (Fc 0.8 and 1.04, Fs 1.24 and 1.61), logged with its velocity, force noise 0.012."""
-    rng = np.random.default_rng(0)
+def stribeck_plateaus(fc_neg: float, fs_neg: float, load: float, seed: int) -> MotionData:
+    """Plateaus over two decades of speed: Stribeck friction (Fc 0.8, Fs 1.24 for +x; ``fc_neg``,
+    ``fs_neg`` for −x) under a constant ``load``, logged with its velocity, force noise 0.012."""
+    rng = np.random.default_rng(seed)
     t, x, v = plateaus(np.geomspace(2e-4, 2e-2, 8), 50, 600, 100, rng)
     truth = lr.Params(Fc=0.8, Fs=1.24, Vs=1e-3, delta=1.5, n=2.0, sigma2=5.9, W=[2.6], Delta=[1e-9],
-                      Fc_neg=1.04, Fs_neg=1.61, sigma2_neg=5.9)  # fmt: skip
-    f = lr.simulate(truth, v, t[1] - t[0]) + rng.normal(0.0, 0.012, v.size)
+                      Fc_neg=fc_neg, Fs_neg=fs_neg, sigma2_neg=5.9)  # fmt: skip
+    f = lr.simulate(truth, v, t[1] - t[0]) + load + rng.normal(0.0, 0.012, v.size)
     return MotionData(t, x, f, v=v)
+
+
+def stribeck_fit(record: MotionData) -> tuple[Target, Scales, Fitted]:
+    """The rounds' target of ``record``, and Coulomb, viscous and Stribeck fitted on it."""
+    target, scales = rounds_target(record)
+    structure = Structure(frozenset({"coulomb", "viscous", "stribeck"}))
+    return target, scales, fit(structure, scales, target, {"Fc": 1.0, "sigma2": 5.0})
+
+
+def asymmetric_plateaus() -> MotionData:
+    """Every −x level 1.3 times the +x one (Fc 0.8 and 1.04, Fs 1.24 and 1.61), no load."""
+    return stribeck_plateaus(1.04, 1.61, 0.0, 0)
 
 
 def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
@@ -120,9 +132,7 @@ def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
     # shift (4.9 against 32.9 units on holdout-v1 h07): the offset was named first and the asymmetry
     # on top of it. Started also from the offset moved into the levels, it finds more.
     record = asymmetric_plateaus()
-    target, scales = rounds_target(record)
-    structure = Structure(frozenset({"coulomb", "viscous", "stribeck"}))
-    current = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 5.0})
+    target, scales, current = stribeck_fit(record)
     shifted, offset = select._candidates(current, ["asymmetry", "offset"], scales, target, 0.0)
     assert shifted is not None and offset is not None
     assert shifted.mse < offset.mse < current.mse
@@ -161,15 +171,9 @@ def test_a_stribeck_curve_far_from_the_middle_speed_is_found() -> None:
 
 
 def loaded_plateaus() -> MotionData:
-    """Velocity plateaus as in :func:`asymmetric_plateaus`, of Stribeck friction under a constant
-    load of 0.3 (an offset), whose −x levels are 1 % above the +x ones (an asymmetry far below what
-    the log can tell), logged with the velocity, force noise 0.012."""
-    rng = np.random.default_rng(1)
-    t, x, v = plateaus(np.geomspace(2e-4, 2e-2, 8), 50, 600, 100, rng)
-    truth = lr.Params(Fc=0.8, Fs=1.24, Vs=1e-3, delta=1.5, n=2.0, sigma2=5.9, W=[2.6], Delta=[1e-9],
-                      Fc_neg=0.808, Fs_neg=1.2524, sigma2_neg=5.9)  # fmt: skip
-    f = lr.simulate(truth, v, t[1] - t[0]) + 0.3 + rng.normal(0.0, 0.012, v.size)
-    return MotionData(t, x, f, v=v)
+    """A load of 0.3 (an offset), the −x levels 1 % above the +x ones (an asymmetry far below
+    what the log can tell)."""
+    return stribeck_plateaus(0.808, 1.2524, 0.3, 1)
 
 
 def test_of_an_offset_and_an_asymmetry_that_hold_each_other_the_one_with_fewer_parameters_stays() -> None:
@@ -178,11 +182,8 @@ def test_of_an_offset_and_an_asymmetry_that_hold_each_other_the_one_with_fewer_p
     # removal first kept the asymmetry's three parameters (family held_21 of seed base 3000,
     # inertia + offset + Stribeck, was named with an asymmetry). Among the removals that do not
     # count, the one leaving the fewest parameters goes first, as the rounds choose among additions.
-    record = loaded_plateaus()
-    target, scales = rounds_target(record)
-    structure = Structure(frozenset({"coulomb", "viscous", "stribeck"}))
-    base = fit(structure, scales, target, {"Fc": 1.0, "sigma2": 5.0})
-    loaded = fit(structure.with_effect("offset"), scales, target, base.theta)
+    target, scales, base = stribeck_fit(loaded_plateaus())
+    loaded = fit(base.structure.with_effect("offset"), scales, target, base.theta)
     both = fit(loaded.structure.with_effect("asymmetry"), scales, target, loaded.theta)
     steps = [select.Step("offset", base, loaded), select.Step("asymmetry", loaded, both)]
     final, kept, taken_out = select._prune(base, both, steps, scales, target, Settings(), 0.012**2, print)
