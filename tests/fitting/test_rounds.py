@@ -10,6 +10,7 @@ from conftest import family
 from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
+from leuven_rt.fitting.evaluate import evaluate
 from leuven_rt.fitting.settings import Settings
 from leuven_rt.fitting.solve import Fitted, Target, fit
 from leuven_rt.fitting.structure import Scales, Structure
@@ -186,7 +187,9 @@ def test_of_an_offset_and_an_asymmetry_that_hold_each_other_the_one_with_fewer_p
     loaded = fit(base.structure.with_effect("offset"), scales, target, base.theta)
     both = fit(loaded.structure.with_effect("asymmetry"), scales, target, loaded.theta)
     steps = [select.Step("offset", base, loaded), select.Step("asymmetry", loaded, both)]
-    final, kept, taken_out = select._prune(base, both, steps, scales, target, Settings(), 0.012**2, print)
+    final, kept, taken_out = select._prune(
+        base, both, steps, scales, target, Settings(), 0.012**2, lambda _: None
+    )
     assert [effect for effect, _ in taken_out] == ["asymmetry"]
     assert [step.effect for step in kept] == ["offset"]
     assert final.theta["offset"] == pytest.approx(0.3, abs=0.01)
@@ -201,3 +204,20 @@ def test_an_offset_beside_an_asymmetry_is_taken_out_from_where_the_levels_hold_i
     log = family().make_log(family().draw_case("tuning", 17))
     found = lr.diagnose(MotionData(log.t, log.x, log.f, v=log.v))
     assert sorted(found.named_effects) == ["asymmetry", "stribeck"]
+
+
+def test_an_offset_moved_into_levels_of_their_own_gives_the_same_force_while_sliding() -> None:
+    # The start `_reduced` takes an offset out from, where the model has −x levels already:
+    # Fc + o for +x, Fc_neg − o for −x, the −x rise and σ2 its own.
+    target, scales, base = stribeck_fit(loaded_plateaus())
+    both = fit(base.structure.with_effect("offset").with_effect("asymmetry"), scales, target, base.theta)
+    moved = select._offset_in_levels(both.theta)
+    assert moved is not None and "offset" not in moved
+    o = both.theta["offset"]
+    assert moved["Fc"] == both.theta["Fc"] + o and moved["Fc_neg"] == both.theta["Fc_neg"] - o
+    for own in ("Fs_neg_rise", "sigma2_neg"):
+        assert moved[own] == both.theta[own]
+    force = evaluate(both.structure.without("offset"), scales, moved, target.motion, target.tau, None).force
+    sliding = np.abs(target.motion.v) >= 1e-3
+    assert np.max(np.abs(force - both.force)[sliding]) < 1e-6
+    assert select._offset_in_levels({**both.theta, "offset": both.theta["Fc_neg"]}) is None

@@ -398,18 +398,17 @@ def _prune(
     taken_out: list[tuple[str, float]] = []
     while added:
         options = [(effect, _reduced(final, effect, scales, target, unit, say)) for effect in added]
-        cheapest = min(option[1].mse for option in options)
+        least, cheapest = min(options, key=lambda option: option[1].mse)
+        if _significant(cheapest, final, target, threshold, settings):
+            break
         loose = [
             option
             for option in options
-            if option[1].mse <= cheapest + threshold
+            if option[1].mse <= cheapest.mse + threshold
             and not _significant(option[1], final, target, threshold, settings)
         ]
-        if not loose:
-            break
         effect, reduced = min(loose, key=lambda option: (len(option[1].theta), option[1].mse))
-        if reduced.mse > cheapest:
-            least = min(options, key=lambda option: option[1].mse)[0]
+        if effect != least:
             say(f"{effect} before {least}: its removal leaves fewer parameters")
         if effect in REFOUND and effect not in refound:
             refound.add(effect)
@@ -653,8 +652,9 @@ def _shifted(
 def _offset_in_levels(theta: dict[str, float]) -> dict[str, float] | None:
     """``theta`` of a model with an offset o as the θ of the same model without it and with
     levels of its own for −x: Fc + o for +x and Fc_neg − o for −x (Fc_neg = Fc where the model is
-    symmetric; the rises and σ2 the same, or the model's own for −x); None where a level would not
-    stay positive."""
+    symmetric; the rises and σ2 the same, or the model's own for −x), which gives the same force
+    while sliding (not at a stop, nor where a level's factor scales the offset): a start, not
+    the same model; None where a level would not stay positive."""
     o = theta["offset"]
     fc = theta.get("Fc")
     fc_neg = theta.get("Fc_neg", fc)
