@@ -657,8 +657,10 @@ def _offset_in_levels(theta: dict[str, float]) -> dict[str, float] | None:
     the same model; None where a level would not stay positive."""
     o = theta["offset"]
     fc = theta.get("Fc")
+    if fc is None:
+        return None
     fc_neg = theta.get("Fc_neg", fc)
-    if fc is None or fc_neg is None or not fc + o > 0.0 or not fc_neg - o > 0.0:
+    if not fc + o > 0.0 or not fc_neg - o > 0.0:
         return None
     out = {name: value for name, value in theta.items() if name != "offset"}
     out["Fc"], out["Fc_neg"] = fc + o, fc_neg - o
