@@ -48,6 +48,8 @@ cargo clippy --manifest-path crates/nostd-check/Cargo.toml --profile nostd -- -D
 cargo build --manifest-path crates/nostd-check/Cargo.toml --profile nostd
 step "cargo test --workspace"
 cargo test --workspace
+step "cargo test -p gms-core (without the std feature, which the workspace's host crates switch on: libm's pow, as on a no_std target)"
+cargo test -p gms-core
 step "cargo test -p gms-dyn --no-default-features (as the C library builds it: no gms-batch, no rayon)"
 cargo test -p gms-dyn --no-default-features
 step "cargo doc --workspace --no-deps (warnings are errors)"

@@ -32,6 +32,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+// Only for the C library's `pow` (the `std` feature, math.rs): nothing else of std is used.
+#[cfg(feature = "std")]
+extern crate std;
+
 mod checks;
 mod compensator;
 mod error;

@@ -5,7 +5,9 @@
 //! a few hundred instructions, while the exponents people choose are almost always integers
 //! (1, 2, 3, 4) or half-integers (0.5, 1.5, 2.5): for those, a few products and at most one
 //! square root are exact to a few ulps. [`Power`] sorts the exponent into its class once, when
-//! the parameters are built, so a step pays neither the test nor `pow`.
+//! the parameters are built, so a step pays neither the test nor `pow`. The other exponents (a
+//! fitted n or δ) go to `pow`: the C library's where the `std` feature allows it, `libm`'s in
+//! `no_std`.
 
 /// The largest integer part of an exponent evaluated by products rather than `pow`.
 ///
@@ -34,7 +36,7 @@ pub enum Power {
     Integer(u32),
     /// p = k + ½ with 0 ≤ k ≤ 8: |x|^k·√|x|.
     HalfInteger(u32),
-    /// Any other p, through `libm::pow`.
+    /// Any other p, through `pow` (the C library's with the `std` feature, else `libm`'s).
     General(f64),
 }
 
@@ -92,10 +94,26 @@ impl Power {
                 if a == 0.0 {
                     0.0
                 } else {
-                    libm::pow(a, p)
+                    pow(a, p)
                 }
             }
         }
+    }
+}
+
+/// a^p for exponents of no class: the C library's `pow` with the `std` feature, `libm`'s
+/// without. glibc's (a table-driven, correctly rounded to within 0.52 ulp algorithm) costs a
+/// third of the software one's time and lies within an ulp of it; a fit that raises to a fitted
+/// n spends most of its simulation in this call (docs/benchmarks.md#rust-one-channel-one-step).
+#[inline]
+fn pow(a: f64, p: f64) -> f64 {
+    #[cfg(feature = "std")]
+    {
+        std::primitive::f64::powf(a, p)
+    }
+    #[cfg(not(feature = "std"))]
+    {
+        libm::pow(a, p)
     }
 }
 
@@ -181,7 +199,8 @@ mod tests {
             Power::One | Power::Two => 1,
             Power::Integer(k) => u64::from(k),
             Power::HalfInteger(k) => u64::from(k) + 2,
-            Power::General(_) => 0,
+            // The C library's pow (the `std` feature) within an ulp of libm's; libm's itself.
+            Power::General(_) => u64::from(cfg!(feature = "std")),
         }
     }
 

@@ -178,7 +178,7 @@ mod tests {
             let v = (f64::from(k) - 2000.0) * 2e-5;
             let (fc, fs) = if v < 0.0 { (0.3, 7.0) } else { (1.0, 1.5) };
             // g multiplies by 1/Vs, computed once.
-            let direct = fc + (fs - fc) * libm::exp(-libm::pow(libm::fabs(v * (1.0 / 1e-3)), 1.7));
+            let direct = fc + (fs - fc) * libm::exp(-Power::new(1.7).abs(v * (1.0 / 1e-3)));
             assert_eq!(curve.g(v), direct, "v = {v}");
         }
     }

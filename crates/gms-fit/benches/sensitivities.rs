@@ -2,7 +2,10 @@
 //!
 //! `run`: T = 30 000 samples (a 1 kHz, 5 Hz sine of 10 mm/s: reversals, presliding and sliding)
 //! through N = 10 and 20 elements (P = 10 + N columns): gms-core's `Params::simulate`, then
-//! `gms_fit::sensitivities` with the Jacobian at every row, at every 10th row, and at none.
+//! `gms_fit::sensitivities` with the Jacobian at every row, at every 10th row, and at none. The
+//! case `presliding` is what a fit of a presliding log runs: N = 20 with a fitted n = 2.15 (no
+//! class: `pow`) along a 1 Hz sine of 12 µm with a 7 Hz one of 4 µm on it, within the bank's
+//! widest element for most of the cycle.
 //!
 //! `sets`: 8 parameter sets of N = 10 along the same signal: `gms_fit::simulate_sets` (one set
 //! per thread), the 8 sets one after the other through gms-core, and, for comparison, one set on
@@ -26,31 +29,46 @@ fn velocity() -> Vec<f64> {
         .collect()
 }
 
+/// Velocities of x = 12 µm·sin(2π·1 Hz·t) + 4 µm·sin(2π·7 Hz·t).
+fn presliding() -> Vec<f64> {
+    let tau = 2.0 * core::f64::consts::PI;
+    (0..SAMPLES)
+        .map(|k| {
+            let t = k as f64 * DT;
+            12e-6 * tau * (tau * t).cos() + 4e-6 * 7.0 * tau * (7.0 * tau * t).cos()
+        })
+        .collect()
+}
+
 /// gms-core's bench model: N equal weights adding up to 2 N, break deflections up to 10 µm;
 /// `scale` varies the weights from set to set.
 fn maxwell<const N: usize>(scale: f64) -> Params<MaxwellSlip<N>> {
+    maxwell_n(scale, 2.0)
+}
+
+/// [`maxwell`] with transition exponent `n`.
+fn maxwell_n<const N: usize>(scale: f64, n: f64) -> Params<MaxwellSlip<N>> {
     let w = core::array::from_fn(|i| scale * 2.0 / N as f64 * (1.0 + 0.01 * i as f64));
     let delta = core::array::from_fn(|i| 1e-5 * (i + 1) as f64 / N as f64);
     let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
     let elements = MaxwellSlip::new(w, delta).expect("valid elements");
-    Params::new(stribeck, 2.0, 30.0, 0.4, elements).expect("valid parameters")
+    Params::new(stribeck, n, 30.0, 0.4, elements).expect("valid parameters")
 }
 
-fn run<const N: usize>(c: &mut Criterion)
+fn run<const N: usize>(c: &mut Criterion, case: &str, signal: &[f64], n: f64)
 where
     ParameterSet: From<Params<MaxwellSlip<N>>>,
 {
-    let params = maxwell::<N>(1.0);
+    let params = maxwell_n::<N>(1.0, n);
     let set = ParameterSet::from(params);
-    let signal = velocity();
     let simulation = Simulation {
-        signal: &signal,
+        signal,
         input: Input::Velocity,
         dt: DT,
         scheme: Scheme::Implicit,
     };
     let columns = column_count(set.kind());
-    let label = format!("N={N} P={columns}");
+    let label = format!("{case} N={N} P={columns}");
     let mut group = c.benchmark_group("run");
     group.sample_size(20);
     let mut force = vec![0.0; SAMPLES];
@@ -60,7 +78,7 @@ where
             params
                 .simulate(
                     &mut state,
-                    black_box(&signal),
+                    black_box(signal),
                     DT,
                     Scheme::Implicit,
                     &mut force,
@@ -143,8 +161,10 @@ fn sets(c: &mut Criterion) {
 }
 
 fn benches(c: &mut Criterion) {
-    run::<10>(c);
-    run::<20>(c);
+    let (sine, small) = (velocity(), presliding());
+    run::<10>(c, "sine", &sine, 2.0);
+    run::<20>(c, "sine", &sine, 2.0);
+    run::<20>(c, "presliding", &small, 2.15);
     sets(c);
 }
 

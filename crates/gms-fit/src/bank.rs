@@ -37,10 +37,11 @@ pub(crate) trait Bank<const M: usize>: Copy {
     /// Fh(y) with `memory` from step start, its slope in y, and in `d` its derivative by every
     /// column at fixed y: −Σ over sticking elements of kᵢ·dζᵢ/dθ, plus dFh/dθ of the own
     /// columns; `s` is dz/dθ at step start. Also writes `sticking`, as [`Bank::sticking`] does.
+    /// `carried` is mutable for what it keeps of the last call's sums, not for the sensitivities.
     fn linearise(
         &self,
         memory: &Self::Memory,
-        carried: &Self::Carried,
+        carried: &mut Self::Carried,
         s: &Vector<M>,
         y: f64,
         sticking: &mut Self::Sticking,
@@ -88,12 +89,23 @@ impl<const N: usize> Elements<N> {
 /// follows z: its sensitivity is dz/dθ itself, kept nowhere else. Only when it sticks again is
 /// that value written into its own slot, which then holds while it sticks. In gross sliding,
 /// where every element slips on every step, nothing is summed or copied.
+///
+/// The sum over the elements that stick with a sensitivity of their own, Σ kᵢ·dζᵢ/dθ, changes
+/// only when one of them starts or stops sticking or a slot is written: between those events
+/// (presliding, where a bank holds for hundreds of steps between slips) it is kept, not summed
+/// again. It is the same sum of the same numbers, so the result is the same bit for bit.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ElementSensitivities<const N: usize> {
     /// dζᵢ/dθ of the elements that do not follow z.
     own: [Vector<N>; N],
     /// Whether element i follows z (its `own` slot is then stale).
     follows: [bool; N],
+    /// The weights of the last sum of `own`: kᵢ where element i sticks with its own slot, else 0.
+    summed: [f64; N],
+    /// That sum, valid while `fresh` holds.
+    sum: Vector<N>,
+    /// Whether `sum` is Σ summed[i]·own[i] of the slots as they are now.
+    fresh: bool,
 }
 
 impl<const N: usize> Bank<N> for Elements<N> {
@@ -106,6 +118,9 @@ impl<const N: usize> Bank<N> for Elements<N> {
         let carried = ElementSensitivities {
             own: [Vector::ZERO; N],
             follows: [true; N],
+            summed: [0.0; N],
+            sum: Vector::ZERO,
+            fresh: false,
         };
         (carried, [0.0; N])
     }
@@ -127,7 +142,7 @@ impl<const N: usize> Bank<N> for Elements<N> {
     fn linearise(
         &self,
         zeta: &[f64; N],
-        carried: &ElementSensitivities<N>,
+        carried: &mut ElementSensitivities<N>,
         s: &Vector<N>,
         y: f64,
         sticking: &mut [f64; N],
@@ -157,8 +172,12 @@ impl<const N: usize> Bank<N> for Elements<N> {
         // to sum.
         let mut moved = if held == 0.0 {
             Vector::ZERO
+        } else if carried.fresh && carried.summed == holding {
+            carried.sum
         } else {
-            weighted_sum(&holding, &carried.own)
+            let sum = weighted_sum(&holding, &carried.own);
+            (carried.summed, carried.sum, carried.fresh) = (holding, sum, true);
+            sum
         };
         moved.add_scaled(following, s);
         for (value, moved) in d.shared.iter_mut().zip(&moved.shared) {
@@ -187,6 +206,7 @@ impl<const N: usize> Bank<N> for Elements<N> {
             for (own, _) in carried.own.iter_mut().zip(stops).filter(|(_, stop)| *stop) {
                 *own = *s;
             }
+            carried.fresh = false;
         }
     }
 }
@@ -221,7 +241,7 @@ impl Bank<1> for Spring {
     fn linearise(
         &self,
         _memory: &(),
-        _carried: &(),
+        _carried: &mut (),
         _s: &Vector<1>,
         y: f64,
         _sticking: &mut (),

@@ -200,7 +200,7 @@ impl<B: Bank<M>, const M: usize> Tracker<B, M> {
                 // The root's linearisation gives both the step's sensitivity and the output's.
                 let root = self.bank.linearise(
                     &before.memory,
-                    &self.carried,
+                    &mut self.carried,
                     &self.s,
                     z_next,
                     &mut self.sticking,
@@ -217,7 +217,7 @@ impl<B: Bank<M>, const M: usize> Tracker<B, M> {
                 if c != 0.0 {
                     let start = self.bank.linearise(
                         &before.memory,
-                        &self.carried,
+                        &mut self.carried,
                         &self.s,
                         z,
                         &mut self.sticking,
@@ -229,7 +229,7 @@ impl<B: Bank<M>, const M: usize> Tracker<B, M> {
                 if let Some(row) = row {
                     let end = self.bank.linearise(
                         &before.memory,
-                        &self.carried,
+                        &mut self.carried,
                         &self.s,
                         z_next,
                         &mut self.sticking,

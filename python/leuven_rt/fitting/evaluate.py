@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..data.reconstruction import Motion
+from ..level import PositionLevel, Ripple
 from ..params import Params
 from ..simulation import simulate, simulate_position
 from .sensitivity import sensitivities
@@ -41,6 +42,20 @@ def params_of(values: Values) -> Params:
     return Params(
         **friction, W=tuple(float(w) for w in values.W), Delta=tuple(float(d) for d in values.Delta)
     )
+
+
+def position_terms(terms: Any, scales: Scales) -> dict[str, Any] | None:
+    """The fields of a :class:`~leuven_rt.PositionLevel` or :class:`~leuven_rt.PositionForce`
+    from a structure's trend and ripples (``Values.level`` or ``Values.force``); None for None."""
+    if terms is None:
+        return None
+    trend, ripples = terms
+    return {
+        "middle": scales.middle,
+        "half_stroke": scales.half_stroke,
+        "trend": (float(trend[0]), float(trend[1])),
+        "ripples": tuple(Ripple(float(period), tuple(cos), tuple(sin)) for period, cos, sin in ripples),
+    }
 
 
 def trend_basis(x: FloatArray, scales: Scales) -> tuple[FloatArray, FloatArray]:
@@ -76,6 +91,14 @@ def evaluate(
 ) -> Evaluation:
     """f_model at θ, and its θ-derivatives on ``rows`` (a mask; None: no derivatives)."""
     values = unpack(structure, scales, theta)
+    level = position_terms(values.level, scales)
+    if level is not None:
+        # The file's rule for a level (Σ|coefficients| < 1, gms-core's check): a θ that breaks
+        # it is no model a file can hold, however positive the factor stays on this log's
+        # positions. Refused here (ParameterError), a fit treats it as a large, flat residual
+        # and stays inside; unchecked, it stepped out on holdout-v1's h04 (1.015) and the file
+        # could not be written.
+        PositionLevel(**level)
     names = structure.names() + structure.share_names(scales.deltas.size)
     params = params_of(values)
     friction, derivatives = _friction(params, motion, rows)
@@ -153,4 +176,4 @@ def _series_names(structure: Structure, names: list[str]) -> list[str]:
     return [name for name in names if name.startswith(prefix)]
 
 
-__all__ = ["Evaluation", "evaluate", "params_of", "ripple_basis", "series", "trend_basis"]
+__all__ = ["Evaluation", "evaluate", "params_of", "position_terms", "ripple_basis", "series", "trend_basis"]

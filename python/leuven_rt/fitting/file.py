@@ -15,11 +15,11 @@ from typing import Any
 
 import numpy as np
 
-from ..level import PositionForce, PositionLevel, Ripple
+from ..level import PositionForce, PositionLevel
 from ..modelfile import ModelFile, Reconstruction
 from ..params import Params
 from ..units import Units
-from .evaluate import params_of
+from .evaluate import params_of, position_terms
 from .structure import Scales, Values
 
 #: An element whose weight is below this share of the largest is left out of the file.
@@ -33,18 +33,6 @@ def friction_params(values: Values) -> Params:
     return params_of(replace(values, W=weights[keep], Delta=np.asarray(values.Delta)[keep]))
 
 
-def _terms(terms: Any, scales: Scales) -> dict[str, Any] | None:
-    if terms is None:
-        return None
-    trend, ripples = terms
-    return {
-        "middle": scales.middle,
-        "half_stroke": scales.half_stroke,
-        "trend": (float(trend[0]), float(trend[1])),
-        "ripples": tuple(Ripple(float(period), tuple(cos), tuple(sin)) for period, cos, sin in ripples),
-    }
-
-
 def model_file(
     values: Values,
     scales: Scales,
@@ -53,8 +41,8 @@ def model_file(
     report: Mapping[str, Any] | None = None,
 ) -> ModelFile:
     """The model file of a fit's ``values`` (module documentation)."""
-    level = _terms(values.level, scales)
-    force = _terms(values.force, scales)
+    level = position_terms(values.level, scales)
+    force = position_terms(values.force, scales)
     return ModelFile(
         friction=friction_params(values),
         level=None if level is None else PositionLevel(**level),

@@ -219,7 +219,7 @@ def bounds(structure: Structure, scales: Scales, elements: int) -> tuple[FloatAr
             lo, hi = math.log(1.01), math.log(10.0)
         elif name.startswith("level_") or name == "drift":
             # The level's factor must stay positive: each coefficient within ±0.5 (the file's rule,
-            # Σ|coefficients| < 1, is checked when the file is built).
+            # Σ|coefficients| < 1, is checked at every evaluation: evaluate.evaluate).
             lo, hi = -0.5, 0.5
         else:
             lo, hi = -math.inf, math.inf
