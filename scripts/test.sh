@@ -50,8 +50,8 @@ step "cargo test --workspace"
 cargo test --workspace
 step "cargo test -p gms-core (without the std feature, which the workspace's host crates switch on: libm's pow, as on a no_std target)"
 cargo test -p gms-core
-step "cargo test -p gms-dyn --no-default-features (as the C library builds it: no gms-batch, no rayon)"
-cargo test -p gms-dyn --no-default-features
+step "cargo test -p gms-dyn --no-default-features --features gms-core/std (as the C library builds it: no gms-batch, no rayon)"
+cargo test -p gms-dyn --no-default-features --features gms-core/std
 step "cargo doc --workspace --no-deps (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 step "Python build"

@@ -221,3 +221,14 @@ def test_an_offset_moved_into_levels_of_their_own_gives_the_same_force_while_sli
     sliding = np.abs(target.motion.v) >= 1e-3
     assert np.max(np.abs(force - both.force)[sliding]) < 1e-6
     assert select._offset_in_levels({**both.theta, "offset": both.theta["Fc_neg"]}) is None
+
+
+def test_a_position_form_no_file_can_hold_is_no_candidate(monkeypatch: pytest.MonkeyPatch) -> None:
+    # A ripple period below what the positions resolve (gms-core's rule: 2²⁰ ulps of the largest
+    # position, 2.3e-10 here) is refused at every θ, the candidate's start included: the form is
+    # left out (both forms here, so no candidate), not fitted on until the file fails.
+    record = position_ripple()
+    target, scales = rounds_target(record)
+    base = fit(Structure(frozenset({"coulomb", "viscous"})), scales, target, {"Fc": 1.0, "sigma2": 0.5})
+    monkeypatch.setattr(select, "find_period", lambda *_: 1e-13)
+    assert select._extend(base, "position_dependence", scales, target, select.SCREEN) is None

@@ -102,9 +102,10 @@ impl Power {
 }
 
 /// a^p for exponents of no class: the C library's `pow` with the `std` feature, `libm`'s
-/// without. glibc's (a table-driven, correctly rounded to within 0.52 ulp algorithm) costs a
-/// third of the software one's time and lies within an ulp of it; a fit that raises to a fitted
-/// n spends most of its simulation in this call (docs/benchmarks.md#rust-one-channel-one-step).
+/// without. glibc's (2.28 and later: table-driven, its error at most about 0.52 ulp) costs about
+/// a third of the software one's time and lies within an ulp of it; a fit that raises to a
+/// fitted n spends much of its simulation in this call
+/// (docs/benchmarks.md#rust-one-channel-one-step).
 #[inline]
 fn pow(a: f64, p: f64) -> f64 {
     #[cfg(feature = "std")]

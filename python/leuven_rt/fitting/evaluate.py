@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from .._typing import FloatArray
 from ..data.reconstruction import Motion
-from ..level import PositionLevel, Ripple
+from ..level import PositionForce, PositionLevel, Ripple
 from ..params import Params
 from ..simulation import simulate, simulate_position
 from .sensitivity import sensitivities
@@ -91,14 +91,16 @@ def evaluate(
 ) -> Evaluation:
     """f_model at θ, and its θ-derivatives on ``rows`` (a mask; None: no derivatives)."""
     values = unpack(structure, scales, theta)
-    level = position_terms(values.level, scales)
+    level, position_force = position_terms(values.level, scales), position_terms(values.force, scales)
+    # The file's rules for its position terms, gms-core's checks (for a level, Σ|coefficients|
+    # < 1; for either, a phase the positions resolve): a θ that breaks them is no model a file
+    # can hold, however positive the factor stays on this log's positions. Refused here
+    # (ParameterError), a fit treats it as a large, flat residual and stays inside; unchecked,
+    # a level stepped out on holdout-v1's h04 (1.015) and the file could not be written.
     if level is not None:
-        # The file's rule for a level (Σ|coefficients| < 1, gms-core's check): a θ that breaks
-        # it is no model a file can hold, however positive the factor stays on this log's
-        # positions. Refused here (ParameterError), a fit treats it as a large, flat residual
-        # and stays inside; unchecked, it stepped out on holdout-v1's h04 (1.015) and the file
-        # could not be written.
         PositionLevel(**level)
+    if position_force is not None:
+        PositionForce(**position_force)
     names = structure.names() + structure.share_names(scales.deltas.size)
     params = params_of(values)
     friction, derivatives = _friction(params, motion, rows)

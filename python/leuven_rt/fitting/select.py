@@ -41,7 +41,7 @@ from ..data.reconstruction import (
 )
 from ..data.records import MotionData
 from ..data.signals import residual_noise, robust_spread
-from ..errors import DataError
+from ..errors import DataError, ParameterError
 from ..modelfile import Reconstruction
 from .evaluate import evaluate, params_of
 from .floor import Floor, floor_estimate, with_reversals
@@ -687,8 +687,13 @@ def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterat
         structure = current.structure.with_effect(
             effect, form=form, periods=() if period is None else (period,)
         )
-        options.append(fit(structure, scales, target, current.theta, iterations))
-    return min(options, key=lambda fitted: fitted.mse)
+        try:
+            options.append(fit(structure, scales, target, current.theta, iterations))
+        except ParameterError:
+            # Refused at its start, where it adds nothing: a form no file can hold at any θ (a
+            # period whose phase the log's positions do not resolve). Not a candidate.
+            continue
+    return min(options, key=lambda fitted: fitted.mse) if options else None
 
 
 def _stribeck(current: Fitted, scales: Scales, target: Target, iterations: int) -> Fitted:

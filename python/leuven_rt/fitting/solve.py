@@ -151,8 +151,8 @@ def fit(
             try:
                 result = evaluate(structure, scales, full(x), target.motion, target.tau, rows)
             except ParameterError:
-                # Outside the model's rules (a level whose file could not hold it): a large, flat
-                # residual.
+                # Outside the model's rules (a parameter set gms-core refuses, a position term no
+                # file could hold): a large, flat residual.
                 worst = np.full(rows.sum() + bool(shares), 10.0)
                 cache[key] = (worst, np.zeros((worst.size, len(names))), None)
                 return cache[key]
