@@ -44,11 +44,17 @@ def params_of(values: Values) -> Params:
     )
 
 
-def position_terms(terms: Any, scales: Scales) -> dict[str, Any] | None:
-    """The fields of a :class:`~leuven_rt.PositionLevel` or :class:`~leuven_rt.PositionForce`
-    from a structure's trend and ripples (``Values.level`` or ``Values.force``); None for None."""
-    if terms is None:
-        return None
+def position_terms(values: Values, scales: Scales) -> tuple[PositionLevel | None, PositionForce | None]:
+    """The position-dependent level and the position force the model file of ``values`` holds
+    (None where the structure has none), built, and so checked, by gms-core's rules: for a level
+    Σ|coefficients| < 1, for either a phase the positions resolve (ParameterError otherwise)."""
+    level = None if values.level is None else PositionLevel(**_fields(values.level, scales))
+    force = None if values.force is None else PositionForce(**_fields(values.force, scales))
+    return level, force
+
+
+def _fields(terms: Any, scales: Scales) -> dict[str, Any]:
+    """The fields of a position term from a structure's trend and ripples."""
     trend, ripples = terms
     return {
         "middle": scales.middle,
@@ -91,16 +97,11 @@ def evaluate(
 ) -> Evaluation:
     """f_model at θ, and its θ-derivatives on ``rows`` (a mask; None: no derivatives)."""
     values = unpack(structure, scales, theta)
-    level, position_force = position_terms(values.level, scales), position_terms(values.force, scales)
-    # The file's rules for its position terms, gms-core's checks (for a level, Σ|coefficients|
-    # < 1; for either, a phase the positions resolve): a θ that breaks them is no model a file
-    # can hold, however positive the factor stays on this log's positions. Refused here
-    # (ParameterError), a fit treats it as a large, flat residual and stays inside; unchecked,
-    # a level stepped out on holdout-v1's h04 (1.015) and the file could not be written.
-    if level is not None:
-        PositionLevel(**level)
-    if position_force is not None:
-        PositionForce(**position_force)
+    # The file's rules for its position terms: a θ that breaks them is no model a file can hold,
+    # however positive the factor stays on this log's positions. Refused here (ParameterError),
+    # a fit treats it as a large, flat residual and stays inside; unchecked, a level stepped out
+    # on holdout-v1's h04 (1.015) and the file could not be written.
+    position_terms(values, scales)
     names = structure.names() + structure.share_names(scales.deltas.size)
     params = params_of(values)
     friction, derivatives = _friction(params, motion, rows)

@@ -15,7 +15,6 @@ from typing import Any
 
 import numpy as np
 
-from ..level import PositionForce, PositionLevel
 from ..modelfile import ModelFile, Reconstruction
 from ..params import Params
 from ..units import Units
@@ -41,12 +40,11 @@ def model_file(
     report: Mapping[str, Any] | None = None,
 ) -> ModelFile:
     """The model file of a fit's ``values`` (module documentation)."""
-    level = position_terms(values.level, scales)
-    force = position_terms(values.force, scales)
+    level, force = position_terms(values, scales)
     return ModelFile(
         friction=friction_params(values),
-        level=None if level is None else PositionLevel(**level),
-        position_force=None if force is None else PositionForce(**force),
+        level=level,
+        position_force=force,
         offset=float(values.offset),
         inertia=float(values.inertia),
         units=units,
