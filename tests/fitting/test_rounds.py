@@ -139,7 +139,7 @@ def test_an_asymmetry_gains_at_least_what_an_offset_gains() -> None:
     assert shifted.mse < offset.mse < current.mse
     # Where the offset's gain does not count, the second start could not change the choice and
     # is not fitted: the asymmetry is the one started at the symmetric model.
-    plain = select._candidate(current, "asymmetry", scales, target)
+    plain = select._extend(current, "asymmetry", scales, target, select.SCREEN)
     assert plain is not None and shifted.mse <= plain.mse
     gained = current.mse - offset.mse
     unchanged, _ = select._candidates(current, ["asymmetry", "offset"], scales, target, gained)
@@ -232,3 +232,38 @@ def test_a_position_form_no_file_can_hold_is_no_candidate(monkeypatch: pytest.Mo
     base = fit(Structure(frozenset({"coulomb", "viscous"})), scales, target, {"Fc": 1.0, "sigma2": 0.5})
     monkeypatch.setattr(select, "find_period", lambda *_: 1e-13)
     assert select._extend(base, "position_dependence", scales, target, select.SCREEN) is None
+
+
+def test_a_rounds_fits_side_by_side_are_a_loops_bit_for_bit(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The candidates of a round run on the machine's cores (select.each, threads): each fit is
+    # independent, so each must give what it gives alone, in the order asked, whatever finishes
+    # first (seven candidates, one of them a bank of 21 elements, four Stribeck starts).
+    record = slowly_sampled_bank()
+    target, scales = rounds_target(record)
+    base = fit(Structure(frozenset({"coulomb", "viscous"})), scales, target, {"Fc": 4.0, "sigma2": 50.0})
+    left = [name for name in select.CATALOGUE if not base.structure.has(name)]
+
+    def found(cores: int) -> list[Fitted | None]:
+        monkeypatch.setattr(select, "_cores", lambda: cores)
+        return select._candidates(base, left, scales, target, 0.0)
+
+    alone, side_by_side = found(1), found(2)
+    assert len(alone) == len(left) == len(side_by_side)
+    for one, other in zip(alone, side_by_side, strict=True):
+        assert one is not None and other is not None
+        assert one.structure == other.structure
+        assert one.theta == other.theta
+        assert np.array_equal(one.force, other.force)
+
+
+def test_an_error_side_by_side_reaches_the_caller_as_a_loops_would(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(select, "_cores", lambda: 2)
+
+    def work(item: int) -> int:
+        if item == 2:
+            raise ValueError(f"item {item}")
+        return 10 * item
+
+    assert select.each(work, [0, 1, 3]) == [0, 10, 30]
+    with pytest.raises(ValueError, match="item 2"):
+        select.each(work, [0, 1, 2, 3])

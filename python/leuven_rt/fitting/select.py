@@ -23,8 +23,11 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
@@ -138,6 +141,31 @@ class Selection:
 
 
 Progress = Callable[[str], None]
+
+_Item = TypeVar("_Item")
+_Result = TypeVar("_Result")
+
+
+def each(work: Callable[[_Item], _Result], items: Sequence[_Item]) -> list[_Result]:
+    """``work`` on every item, in order, side by side on the cores this process may run on: the
+    fits of a round are independent, and their simulations (gms-fit), factorisations (LAPACK, one
+    BLAS thread each: :func:`leuven_rt.identify`) and array work release the GIL. Each result is
+    the one a sequential loop gives, bit for bit."""
+    workers = min(len(items), _cores())
+    if workers < 2:
+        return [work(item) for item in items]
+    pool = ThreadPoolExecutor(max_workers=workers)
+    try:
+        return list(pool.map(work, items))
+    finally:
+        # On an error or an interrupt, the fits not yet started are dropped, not waited for.
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _cores() -> int:
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
 
 
 def select(
@@ -397,7 +425,7 @@ def _prune(
     refound: set[str] = set()
     taken_out: list[tuple[str, float]] = []
     while added:
-        options = [(effect, _reduced(final, effect, scales, target, unit, say)) for effect in added]
+        options = _reductions(final, added, scales, target, unit, say)
         least, cheapest = min(options, key=lambda option: option[1].mse)
         if _significant(cheapest, final, target, threshold, settings):
             break
@@ -429,26 +457,37 @@ def _prune(
     return final, _regrow(base, final, added, scales, target), taken_out
 
 
-def _reduced(
-    final: Fitted, effect: str, scales: Scales, target: Target, unit: float, say: Progress
-) -> Fitted:
+def _reductions(
+    final: Fitted, effects: list[str], scales: Scales, target: Target, unit: float, say: Progress
+) -> list[tuple[str, Fitted]]:
+    """Each of ``effects`` with ``final`` without it (:func:`_reduced`), side by side
+    (:func:`each`)."""
+    found = each(lambda effect: _reduced(final, effect, scales, target), effects)
+    for reduced, moved in found:
+        if moved is not None:
+            gain = (reduced.mse - moved.mse) / unit
+            say(f"offset moved into the two directions' levels: {gain:.2f} units below its removal")
+    return [
+        (effect, reduced if moved is None else moved)
+        for effect, (reduced, moved) in zip(effects, found, strict=True)
+    ]
+
+
+def _reduced(final: Fitted, effect: str, scales: Scales, target: Target) -> tuple[Fitted, Fitted | None]:
     """``final`` without ``effect``, screened from where ``final`` stands; an offset beside an
     asymmetry also started moved into the two directions' levels (:func:`_offset_in_levels`), and
     the better of the two kept: the levels of their own for −x hold the offset, which the start
-    without it leaves to a screened fit to find."""
+    without it leaves to a screened fit to find. Returned as the plain removal and, where it is
+    better, the moved one (None otherwise)."""
     structure = final.structure.without(effect)
     reduced = fit(structure, scales, target, _held(final, structure, scales), SCREEN)
     if effect != "offset" or not structure.has("asymmetry"):
-        return reduced
+        return reduced, None
     start = _offset_in_levels(final.theta)
     if start is None:
-        return reduced
+        return reduced, None
     moved = fit(structure, scales, target, start, SCREEN)
-    if not moved.mse < reduced.mse:
-        return reduced
-    gain = (reduced.mse - moved.mse) / unit
-    say(f"offset moved into the two directions' levels: {gain:.2f} units below its removal")
-    return moved
+    return reduced, moved if moved.mse < reduced.mse else None
 
 
 def _form(structure: Structure) -> str:
@@ -564,10 +603,10 @@ def _rounds(
         best = _choose(current, candidates, target, settings, unit)
         if best is None and current.mse > (1.0 + settings.joint) * unit and len(candidates) > 1:
             ranked = sorted((c for c in candidates if c.mse < current.mse), key=lambda c: c.mse)[:PAIRED]
-            extended = [
-                _extend(first, _added(current, second), scales, target, SCREEN)
-                for first, second in itertools.combinations(ranked, 2)
+            requests = [
+                (first, _added(current, second)) for first, second in itertools.combinations(ranked, 2)
             ]
+            extended = _extended(requests, scales, target, SCREEN)
             pairs = [pair for pair in _shifted(current, extended, scales, target, counts) if pair is not None]
             best = _choose(current, pairs, target, settings, unit)
         if best is None:
@@ -598,16 +637,12 @@ def _with(structure: Structure, effect: str, template: Structure) -> Structure:
     return structure.with_effect(effect)
 
 
-def _candidate(current: Fitted, effect: str, scales: Scales, target: Target) -> Fitted | None:
-    return _extend(current, effect, scales, target, SCREEN)
-
-
 def _candidates(
     current: Fitted, effects: list[str], scales: Scales, target: Target, counts: float
 ) -> list[Fitted | None]:
-    """Each of ``effects`` added to ``current`` (:func:`_candidate`), the asymmetry's also
+    """Each of ``effects`` added to ``current`` (:func:`_extend`, screened), the asymmetry's also
     started from the offset's (:func:`_shifted`)."""
-    found = [_candidate(current, effect, scales, target) for effect in effects]
+    found = _extended([(current, effect) for effect in effects], scales, target, SCREEN)
     return _shifted(current, found, scales, target, counts)
 
 
@@ -675,30 +710,65 @@ def _extend(current: Fitted, effect: str, scales: Scales, target: Target, iterat
     """``current`` with ``effect`` added, fitted from where ``current`` stands; for
     ``position_dependence``, the better of its two forms; for ``stribeck``, the best of its
     starts (:func:`_stribeck`)."""
+    return _extended([(current, effect)], scales, target, iterations)[0]
+
+
+#: A fit :func:`_extended` tries: the structure, where it starts, and whether gms-core may refuse
+#: it there (then it is no candidate).
+_Start = tuple[Structure, dict[str, float], bool]
+
+
+def _extended(
+    requests: Sequence[tuple[Fitted, str]], scales: Scales, target: Target, iterations: int
+) -> list[Fitted | None]:
+    """:func:`_extend` of every ``(current, effect)`` of ``requests``, the fits of all of them side
+    by side (:func:`each`): of each one's fits the first of the lowest, None where it has none."""
+    jobs = [
+        (place, start)
+        for place, (current, effect) in enumerate(requests)
+        for start in _starts(current, effect, scales, target)
+    ]
+
+    def attempt(job: tuple[int, _Start]) -> Fitted | None:
+        structure, theta, refusable = job[1]
+        try:
+            return fit(structure, scales, target, theta, iterations)
+        except ParameterError:
+            if not refusable:
+                raise
+            # Refused at its start, where it adds nothing: a form no file can hold at any θ (a
+            # period whose phase the log's positions do not resolve). Not a candidate.
+            return None
+
+    best: list[Fitted | None] = [None] * len(requests)
+    for (place, _), fitted in zip(jobs, each(attempt, jobs), strict=True):
+        held = best[place]
+        if fitted is not None and (held is None or fitted.mse < held.mse):
+            best[place] = fitted
+    return best
+
+
+def _starts(current: Fitted, effect: str, scales: Scales, target: Target) -> list[_Start]:
+    """The fits that add ``effect`` to ``current`` (:func:`_extend`)."""
     if effect == "stribeck":
-        return _stribeck(current, scales, target, iterations)
+        return [(structure, theta, False) for structure, theta in _stribeck(current, scales)]
     if effect != "position_dependence":
-        return fit(current.structure.with_effect(effect), scales, target, current.theta, iterations)
+        return [(current.structure.with_effect(effect), current.theta, False)]
     residual = target.force - current.force
     rows = target.rows & (target.motion.v != 0)
-    options = []
+    out = []
     for form, signal in (("level", residual * np.sign(target.motion.v)), ("force", residual)):
         period = find_period(target.motion.x, signal, rows)
         structure = current.structure.with_effect(
             effect, form=form, periods=() if period is None else (period,)
         )
-        try:
-            options.append(fit(structure, scales, target, current.theta, iterations))
-        except ParameterError:
-            # Refused at its start, where it adds nothing: a form no file can hold at any θ (a
-            # period whose phase the log's positions do not resolve). Not a candidate.
-            continue
-    return min(options, key=lambda fitted: fitted.mse) if options else None
+        out.append((structure, current.theta, True))
+    return out
 
 
-def _stribeck(current: Fitted, scales: Scales, target: Target, iterations: int) -> Fitted:
-    """``current`` with a Stribeck curve, the best of the fits started where ``current`` stands
-    (Fs = Fc) and started with Fs = 1.5·Fc at the speeds of :data:`STRIBECK_STARTS`.
+def _stribeck(current: Fitted, scales: Scales) -> list[tuple[Structure, dict[str, float]]]:
+    """Where a Stribeck curve added to ``current`` is fitted from: where ``current`` stands
+    (Fs = Fc), and with Fs = 1.5·Fc at the speeds of :data:`STRIBECK_STARTS`.
 
     Where the curve is flat, Vs and δ change nothing, so a fit started there can only raise Fs
     at the start's Vs (the middle of the log's speeds). Franka joint 7 case4_slow
@@ -706,15 +776,13 @@ def _stribeck(current: Fitted, scales: Scales, target: Target, iterations: int) 
     round from the flat start, while the curve that the log's sliding supports (Vs 0.095 rad/s,
     near the top of its speeds) lowers the held-out error from 0.0320 to 0.0304 N·m."""
     structure = current.structure.with_effect("stribeck")
-    best = fit(structure, scales, target, current.theta, iterations)
     low, high = math.log(scales.speed_low), math.log(scales.speed_high)
     rise = 0.5 * current.theta.get("Fc", 0.5 * scales.force)
-    for share in STRIBECK_STARTS:
-        theta = {**current.theta, "Fs_rise": rise, "log_Vs": low + share * (high - low), "delta": 1.0}
-        started = fit(structure, scales, target, theta, iterations)
-        if started.mse < best.mse:
-            best = started
-    return best
+    raised = [
+        {**current.theta, "Fs_rise": rise, "log_Vs": low + share * (high - low), "delta": 1.0}
+        for share in STRIBECK_STARTS
+    ]
+    return [(structure, theta) for theta in [current.theta, *raised]]
 
 
 def _significant(
@@ -825,7 +893,7 @@ def choose_reconstruction(
         _option_target(record, option, noisy, sample) for option in reconstruction_options(record, noisy)
     )
     prepared = [one for one in options if one is not None]
-    refitted = [fit(fitted.structure, on[2], on[1], fitted.theta, iterations) for on in prepared]
+    refitted = each(lambda on: fit(fitted.structure, on[2], on[1], fitted.theta, iterations), prepared)
     errors = [full_mse(one, on[1]) for one, on in zip(refitted, prepared, strict=True)]
     # The first of the lowest: the order of the options breaks ties.
     best = min(range(len(prepared)), key=errors.__getitem__)
