@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pytest
+from threadpoolctl import threadpool_limits
 
 import leuven_rt as lr
 from conftest import family
@@ -237,7 +240,8 @@ def test_a_position_form_no_file_can_hold_is_no_candidate(monkeypatch: pytest.Mo
 def test_a_rounds_fits_side_by_side_are_a_loops_bit_for_bit(monkeypatch: pytest.MonkeyPatch) -> None:
     # The candidates of a round run on the machine's cores (select.each, threads): each fit is
     # independent, so each must give what it gives alone, in the order asked, whatever finishes
-    # first (seven candidates, one of them a bank of 21 elements, four Stribeck starts).
+    # first (six candidates in ten fits: four Stribeck starts, two position forms, a bank of 21
+    # elements), with one BLAS thread as identify runs them.
     record = slowly_sampled_bank()
     target, scales = rounds_target(record)
     base = fit(Structure(frozenset({"coulomb", "viscous"})), scales, target, {"Fc": 4.0, "sigma2": 50.0})
@@ -245,7 +249,8 @@ def test_a_rounds_fits_side_by_side_are_a_loops_bit_for_bit(monkeypatch: pytest.
 
     def found(cores: int) -> list[Fitted | None]:
         monkeypatch.setattr(select, "_cores", lambda: cores)
-        return select._candidates(base, left, scales, target, 0.0)
+        with threadpool_limits(limits=1, user_api="blas"):
+            return select._candidates(base, left, scales, target, 0.0)
 
     alone, side_by_side = found(1), found(2)
     assert len(alone) == len(left) == len(side_by_side)
@@ -256,14 +261,28 @@ def test_a_rounds_fits_side_by_side_are_a_loops_bit_for_bit(monkeypatch: pytest.
         assert np.array_equal(one.force, other.force)
 
 
-def test_an_error_side_by_side_reaches_the_caller_as_a_loops_would(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_side_by_side_the_results_and_the_first_error_come_in_the_order_asked(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     monkeypatch.setattr(select, "_cores", lambda: 2)
 
     def work(item: int) -> int:
-        if item == 2:
+        # Two at a time, the later items finish first: 1, 0, then 2 and 3; −3 fails at 0.02 s,
+        # −1 at 0.1 s.
+        time.sleep(0.1 if item == -1 else 0.01 if item < 0 else 0.02 * (4 - item))
+        if item < 0:
             raise ValueError(f"item {item}")
         return 10 * item
 
-    assert select.each(work, [0, 1, 3]) == [0, 10, 30]
-    with pytest.raises(ValueError, match="item 2"):
-        select.each(work, [0, 1, 2, 3])
+    assert select.each(work, [0, 1, 2, 3]) == [0, 10, 20, 30]
+    # The error a loop would have raised: the first in order, not the first in time.
+    with pytest.raises(ValueError, match="item -1"):
+        select.each(work, [-1, 2, -3])
+
+
+def test_side_by_side_each_item_runs_in_the_callers_context(monkeypatch: pytest.MonkeyPatch) -> None:
+    # numpy's error state is a context variable: a caller that raises on overflow around identify
+    # raises on overflow in every fit, as it did when the fits ran one after the other.
+    monkeypatch.setattr(select, "_cores", lambda: 2)
+    with np.errstate(over="raise"):
+        assert select.each(lambda _: np.geterr()["over"], [0, 1, 2]) == ["raise"] * 3

@@ -20,6 +20,7 @@ of the model file that holds it.
 
 from __future__ import annotations
 
+import contextvars
 import dataclasses
 import itertools
 import math
@@ -30,6 +31,7 @@ from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
+from threadpoolctl import threadpool_info, threadpool_limits
 
 from .._typing import FloatArray
 from ..data.reconstruction import (
@@ -95,6 +97,9 @@ OUTLIER = 5.0
 FIT_ROWS = 2**15
 #: A log needs this many samples that move (between encoder counts or by its velocity) to fit.
 MIN_MOVING = 100
+#: Most fits run side by side (:func:`each`): each holds its Jacobian and the solver's copies of
+#: it (about 100 MB for two at 2¹⁵ rows, measured), and a round has up to 15.
+WORKERS = 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,22 +152,37 @@ _Result = TypeVar("_Result")
 
 
 def each(work: Callable[[_Item], _Result], items: Sequence[_Item]) -> list[_Result]:
-    """``work`` on every item, in order, side by side on the cores this process may run on: the
-    fits of a round are independent, and their simulations (gms-fit), factorisations (LAPACK, one
-    BLAS thread each: :func:`leuven_rt.identify`) and array work release the GIL. Each result is
-    the one a sequential loop gives, bit for bit."""
-    workers = min(len(items), _cores())
+    """``work`` on every item, in order, side by side in threads on the cores this process may run
+    on (at most :data:`WORKERS`): the fits of a round are independent, and their simulations
+    (gms-fit) and array work release the GIL (scipy's SVD in the solver does not). Each result is
+    the one a sequential loop gives, bit for bit: each thread runs in a copy of the caller's
+    context (numpy's error state) and with the caller's BLAS thread limits (one, inside
+    :func:`leuven_rt.identify`), which an OpenMP BLAS keeps per thread."""
+    workers = min(len(items), _cores(), WORKERS)
     if workers < 2:
         return [work(item) for item in items]
-    pool = ThreadPoolExecutor(max_workers=workers)
+    limits = {library["prefix"]: library["num_threads"] for library in threadpool_info()
+              if library["user_api"] == "blas"}  # fmt: skip
+    context = contextvars.copy_context()
+
+    def run(item: _Item) -> _Result:
+        # A copy per item: one context cannot be entered by two threads at once.
+        return context.copy().run(work, item)
+
+    pool = ThreadPoolExecutor(max_workers=workers, initializer=threadpool_limits, initargs=(limits,))
     try:
-        return list(pool.map(work, items))
+        return list(pool.map(run, items))
     finally:
-        # On an error or an interrupt, the fits not yet started are dropped, not waited for.
+        # On an error or an interrupt, the fits not yet started are dropped; those running finish.
         pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _cores() -> int:
+    """The cores this process may run on: the affinity mask (3.13's ``os.process_cpu_count``,
+    which also reads ``PYTHON_CPU_COUNT``, where there is one)."""
+    count = getattr(os, "process_cpu_count", None)
+    if count is not None:
+        return int(count() or 1)
     if hasattr(os, "sched_getaffinity"):
         return len(os.sched_getaffinity(0))
     return os.cpu_count() or 1
