@@ -31,10 +31,15 @@ from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
-from threadpoolctl import threadpool_info, threadpool_limits
 
-from .._typing import FloatArray
-from ..data.reconstruction import (
+from .._extras import require
+
+require("threadpoolctl", extra="analysis", needed_by="leuven_rt.fitting")
+
+from threadpoolctl import threadpool_info, threadpool_limits  # noqa: E402
+
+from .._typing import FloatArray  # noqa: E402
+from ..data.reconstruction import (  # noqa: E402
     ambiguous_samples,
     before_first_count,
     filter_margin,
@@ -44,17 +49,17 @@ from ..data.reconstruction import (
     reconstruct,
     resolution,
 )
-from ..data.records import MotionData
-from ..data.signals import residual_noise, robust_spread
-from ..errors import DataError, ParameterError
-from ..modelfile import Reconstruction
-from .evaluate import evaluate, params_of
-from .floor import Floor, floor_estimate, with_reversals
-from .periods import find_period
-from .sample import SEGMENTS, Sample, segments
-from .settings import Settings
-from .solve import Fitted, Target, fit
-from .structure import CATALOGUE, Scales, Structure
+from ..data.records import MotionData  # noqa: E402
+from ..data.signals import residual_noise, robust_spread  # noqa: E402
+from ..errors import DataError, ParameterError  # noqa: E402
+from ..modelfile import Reconstruction  # noqa: E402
+from .evaluate import evaluate, params_of  # noqa: E402
+from .floor import Floor, floor_estimate, with_reversals  # noqa: E402
+from .periods import find_period  # noqa: E402
+from .sample import SEGMENTS, Sample, segments  # noqa: E402
+from .settings import Settings  # noqa: E402
+from .solve import Fitted, Target, fit  # noqa: E402
+from .structure import CATALOGUE, Scales, Structure  # noqa: E402
 
 #: Iterations of a candidate while it is screened (the chosen one is fitted to convergence), and
 #: of the written file's robust refit from its plain fit (:func:`_robustly`).
