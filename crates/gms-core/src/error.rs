@@ -635,7 +635,7 @@ impl Error {
                 value,
                 extent,
             } => {
-                let finest = crate::level::finest(extent);
+                let finest = crate::resolution::finest(extent);
                 match field {
                     Field::period => write!(f, "`ripples[{index}].period`")?,
                     Field::middle => write!(

@@ -58,6 +58,7 @@
 
 use crate::checks::positive;
 use crate::error::{Error, Field};
+use crate::resolution::finest;
 
 /// The most ripples (distinct periods) a series holds.
 pub const MAX_RIPPLES: usize = 2;
@@ -70,20 +71,6 @@ const WHOLE: f64 = 4_503_599_627_370_496.0;
 
 /// 1.5·2^52: adding and subtracting it rounds an |x| ≤ 2^51 to the nearest whole number.
 const ROUNDING: f64 = 6_755_399_441_055_744.0;
-
-/// 2^20: the ulps of the extent a period or a half stroke must span (see the module documentation).
-const RESOLUTION_ULPS: f64 = 1_048_576.0;
-
-/// The finest period or half stroke resolved at positions up to `extent` (≥ 1): 2^20 ulps of
-/// it, and infinite when the extent is (|middle| + `half_stroke` overflowed).
-pub(crate) fn finest(extent: f64) -> f64 {
-    if extent.is_finite() {
-        // The distance to the next f64 up: one ulp (infinite above f64::MAX).
-        RESOLUTION_ULPS * (f64::from_bits(extent.to_bits() + 1) - extent)
-    } else {
-        f64::INFINITY
-    }
-}
 
 /// One ripple as a caller gives it: the period and the harmonics' amplitudes (`cos[k-1]`,
 /// `sin[k-1]` for harmonic k). Checked by [`PositionSeries::new`].

@@ -45,6 +45,7 @@ mod level;
 mod math;
 mod mechanics;
 mod model;
+mod resolution;
 mod solver;
 mod stribeck;
 
