@@ -164,7 +164,8 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
 
     #[inline(always)]
     fn trial<const L: usize>(&self, zeta: &[[f64; L]; N], z: &[f64; L]) -> TrialLanes<L> {
-        const { assert!(L % WIDTH == 0) };
+        // One lane at a time where L is not a multiple of WIDTH (one channel).
+        let width = if L % WIDTH == 0 { WIDTH } else { 1 };
         let mut trial = TrialLanes {
             force: [0.0; L],
             slope_left: [0.0; L],
@@ -174,7 +175,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
         };
         // WIDTH lanes at a time: their 3 × 4 partial sums and two breakpoints fill the vector
         // registers without spilling.
-        for base in (0..L).step_by(WIDTH) {
+        for base in (0..L).step_by(width) {
             let mut force = [[0.0; WIDTH]; SUMS];
             let mut slope_left = [[0.0; WIDTH]; SUMS];
             let mut slope_right = [[0.0; WIDTH]; SUMS];
@@ -189,7 +190,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
                         break;
                     }
                     let (k, limit) = (self.stiffness[i], self.delta[i]);
-                    for j in 0..WIDTH {
+                    for j in 0..width {
                         let (z, zeta) = (z[base + j], zeta[i][base + j]);
                         let lower = zeta - limit;
                         let upper = zeta + limit;
@@ -212,7 +213,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
                     }
                 }
             }
-            for j in 0..WIDTH {
+            for j in 0..width {
                 let total = |sums: &[[f64; WIDTH]; SUMS]| {
                     (sums[0][j] + sums[1][j]) + (sums[2][j] + sums[3][j])
                 };

@@ -20,6 +20,13 @@
 //! back untouched to gms-core's per-channel calls, which report exactly what they always
 //! report. Channels left over (B mod [`LANES`]) run through gms-core too.
 //!
+//! **Why a second copy.** A lane computes what any lane might need (both sides of every
+//! trial, every form of a piece's root, with selects) where gms-core branches. Run at one lane
+//! ([`run_one_lane`]), the kernel gives gms-core's forces bit for bit but takes 1.3–2.0× its
+//! time per implicit Maxwell-slip step of a block and 1.6–5× per single step (`cargo bench -p
+//! gms-batch --bench one_lane`, docs/benchmarks.md#one-step-for-lanes-and-channels), so
+//! gms-core keeps its own step and the tests keep the two equal.
+//!
 //! gms-core stays `no_std` and free of `unsafe`; the one `unsafe` call of this crate enters the
 //! AVX2 copy of the kernel after the CPU has been asked (src/dispatch.rs).
 
@@ -228,4 +235,44 @@ fn run_scalar<H: BatchHysteresis>(
             };
             result.err().map(|error| (channel, error))
         })
+}
+
+/// One channel through the lane kernel at one lane (L = 1): the step written over lanes with
+/// `f64` as a one-lane value, measured against gms-core's own step by benches/one_lane.rs (the
+/// reason gms-core keeps its scalar step: docs/benchmarks.md#one-step-for-lanes-and-channels).
+/// Returns whether the kernel stepped the row; a row it hands back (non-finite input or result,
+/// no samples, a dt gms-core refuses) is left untouched. Not for users: gms-core's calls and [`run`] are.
+#[doc(hidden)]
+#[must_use]
+#[allow(clippy::too_many_arguments)]
+pub fn run_one_lane<H: BatchHysteresis>(
+    path: Path,
+    params: &Params<H>,
+    kernel: &H::Kernel,
+    state: &mut State<H::Memory>,
+    input: &[f64],
+    dt: f64,
+    scheme: Scheme,
+    out: &mut [f64],
+) -> bool {
+    assert!(out.len() == input.len(), "input and output must be as long");
+    // What `run_on` leaves to gms-core's calls, handed back.
+    if input.is_empty() || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
+        return false;
+    }
+    dispatch::run_group::<H, 1>(
+        path,
+        kernel::Group {
+            params,
+            kernel,
+            states: core::slice::from_mut(state),
+            input,
+            out,
+            samples: input.len(),
+            dt,
+            scheme,
+            signal: Signal::Velocity,
+        },
+    )
+    .is_ok()
 }

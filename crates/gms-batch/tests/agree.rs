@@ -635,3 +635,67 @@ fn no_channels_with_any_sample_count() {
         }
     }
 }
+
+/// The kernel at one lane (`run_one_lane`, the experiment of `benches/one_lane.rs`): gms-core's
+/// forces and states, bit for bit, a block at a time and a sample at a time, on both paths.
+#[test]
+fn one_lane_is_gms_core() {
+    let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).unwrap();
+    let lugre = Params::new(stribeck, 1.0, 316.0, 0.4, Linear::new(1e5).unwrap()).unwrap();
+    let v: Vec<f64> = (0..3_000u32)
+        .map(|k| 0.01 * (std::f64::consts::TAU * 5.0 * f64::from(k) * 1e-3).sin())
+        .collect();
+    one_lane(&standard::<10>(), &v);
+    one_lane(&standard::<3>(), &v);
+    one_lane(&lugre, &v);
+}
+
+fn one_lane<H: BatchHysteresis>(params: &Params<H>, v: &[f64])
+where
+    H::Memory: PartialEq + core::fmt::Debug,
+{
+    let kernel = params.hysteresis().kernel();
+    for scheme in [Scheme::Implicit, Scheme::Explicit] {
+        let mut expected_state = params.relaxed_state();
+        let mut expected = vec![0.0; v.len()];
+        params
+            .simulate(&mut expected_state, v, 1e-3, scheme, &mut expected)
+            .unwrap();
+        for path in paths() {
+            let mut block_state = params.relaxed_state();
+            let mut block = vec![0.0; v.len()];
+            assert!(gms_batch::run_one_lane(
+                path,
+                params,
+                &kernel,
+                &mut block_state,
+                v,
+                1e-3,
+                scheme,
+                &mut block
+            ));
+            let mut tick_state = params.relaxed_state();
+            let mut ticks = vec![0.0; v.len()];
+            for (v, out) in v.chunks(1).zip(ticks.chunks_mut(1)) {
+                assert!(gms_batch::run_one_lane(
+                    path,
+                    params,
+                    &kernel,
+                    &mut tick_state,
+                    v,
+                    1e-3,
+                    scheme,
+                    out
+                ));
+            }
+            assert_eq!(block_state, expected_state, "{path:?} {scheme:?}");
+            assert_eq!(tick_state, expected_state, "{path:?} {scheme:?}");
+            for (k, ((a, b), c)) in expected.iter().zip(&block).zip(&ticks).enumerate() {
+                assert!(
+                    a.to_bits() == b.to_bits() && a.to_bits() == c.to_bits(),
+                    "{path:?} {scheme:?} sample {k}: {a} {b} {c}"
+                );
+            }
+        }
+    }
+}
