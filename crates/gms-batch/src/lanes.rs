@@ -87,8 +87,8 @@ pub trait LaneKernel: Copy {
 /// Independent partial sums of gms-core's element loops.
 const SUMS: usize = 4;
 
-/// Lanes of the trial's element loop at a time (one AVX2 register); the lane count must be a
-/// multiple of it.
+/// Lanes of the trial's element loop at a time (one AVX2 register), where the lane count is a
+/// multiple of it; otherwise one lane at a time.
 const WIDTH: usize = 4;
 
 /// gms-core's `(s0 + s1) + (s2 + s3)`, per lane.
@@ -164,7 +164,7 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
 
     #[inline(always)]
     fn trial<const L: usize>(&self, zeta: &[[f64; L]; N], z: &[f64; L]) -> TrialLanes<L> {
-        // One lane at a time where L is not a multiple of WIDTH (one channel).
+        // One lane at a time where L is not a multiple of WIDTH (one channel: `run_one_lane`).
         let width = if L % WIDTH == 0 { WIDTH } else { 1 };
         let mut trial = TrialLanes {
             force: [0.0; L],
@@ -173,8 +173,8 @@ impl<const N: usize> LaneKernel for MaxwellKernel<N> {
             left: [0.0; L],
             right: [0.0; L],
         };
-        // WIDTH lanes at a time: their 3 × 4 partial sums and two breakpoints fill the vector
-        // registers without spilling.
+        // WIDTH lanes at a time (or one): their 3 × 4 partial sums and two breakpoints fill the
+        // vector registers without spilling.
         for base in (0..L).step_by(width) {
             let mut force = [[0.0; WIDTH]; SUMS];
             let mut slope_left = [[0.0; WIDTH]; SUMS];

@@ -20,12 +20,13 @@
 //! back untouched to gms-core's per-channel calls, which report exactly what they always
 //! report. Channels left over (B mod [`LANES`]) run through gms-core too.
 //!
-//! **Why a second copy.** A lane computes what any lane might need (both sides of every
-//! trial, every form of a piece's root, with selects) where gms-core branches. Run at one lane
-//! ([`run_one_lane`]), the kernel gives gms-core's forces bit for bit but takes 1.3–2.0× its
-//! time per implicit Maxwell-slip step of a block and 1.6–5× per single step (`cargo bench -p
-//! gms-batch --bench one_lane`, docs/benchmarks.md#one-step-for-lanes-and-channels), so
-//! gms-core keeps its own step and the tests keep the two equal.
+//! **Why a second copy.** A lane does what any lane might need (a commit and then a full trial,
+//! both sides, in two passes; every form of a piece's root, with selects) where gms-core fuses
+//! its passes, asks for one side and branches. Run at one lane (`run_one_lane`), the kernel
+//! gives gms-core's forces bit for bit but takes 1.3–2.0× its time per implicit Maxwell-slip
+//! step of a block and 1.6–5× per single step (`cargo bench -p gms-batch --bench one_lane`,
+//! docs/benchmarks.md#one-step-for-lanes-and-channels), so gms-core keeps its own step and the
+//! tests keep the two equal.
 //!
 //! gms-core stays `no_std` and free of `unsafe`; the one `unsafe` call of this crate enters the
 //! AVX2 copy of the kernel after the CPU has been asked (src/dispatch.rs).
@@ -238,10 +239,15 @@ fn run_scalar<H: BatchHysteresis>(
 }
 
 /// One channel through the lane kernel at one lane (L = 1): the step written over lanes with
-/// `f64` as a one-lane value, measured against gms-core's own step by benches/one_lane.rs (the
+/// `f64` as a one-lane value, measured against gms-core's own step by `benches/one_lane.rs` (the
 /// reason gms-core keeps its scalar step: docs/benchmarks.md#one-step-for-lanes-and-channels).
-/// Returns whether the kernel stepped the row; a row it hands back (non-finite input or result,
-/// no samples, a dt gms-core refuses) is left untouched. Not for users: gms-core's calls and [`run`] are.
+/// `kernel` is `params.hysteresis().kernel()`. Returns whether the kernel stepped the row; where
+/// it hands the row back (a non-finite input or result, no samples, a dt gms-core refuses) the
+/// state is as it was, and `out` may hold the forces of the blocks before. Not for users:
+/// gms-core's calls and [`run`] are.
+///
+/// # Panics
+/// If `out` is not as long as `input`.
 #[doc(hidden)]
 #[must_use]
 #[allow(clippy::too_many_arguments)]

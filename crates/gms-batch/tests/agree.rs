@@ -648,6 +648,11 @@ fn one_lane_is_gms_core() {
     one_lane(&standard::<10>(), &v);
     one_lane(&standard::<3>(), &v);
     one_lane(&lugre, &v);
+    // The other exponents' pieces: n = 1 in closed form, n = 1.5 by Newton's iteration.
+    for n in [1.0, 1.5] {
+        let bank = *standard::<10>().hysteresis();
+        one_lane(&Params::new(stribeck, n, 30.0, 0.4, bank).unwrap(), &v);
+    }
 }
 
 fn one_lane<H: BatchHysteresis>(params: &Params<H>, v: &[f64])
