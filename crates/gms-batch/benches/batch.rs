@@ -72,11 +72,7 @@ fn bench_case<H: BatchHysteresis + Copy>(
                 black_box(&out);
             });
         });
-        let mut paths = vec![Path::Baseline];
-        if Path::detected() != Path::Baseline {
-            paths.push(Path::detected());
-        }
-        for path in paths {
+        for &path in Path::available() {
             group.bench_function(label(path.name()), |b| {
                 b.iter(|| {
                     let mut states = vec![params.relaxed_state(); CHANNELS];

@@ -47,10 +47,6 @@ fn case<H: BatchHysteresis>(c: &mut Criterion, label: &str, params: &Params<H>) 
     let v = velocity();
     let kernel = params.hysteresis().kernel();
     let mut out = vec![0.0; SAMPLES];
-    let mut paths = vec![Path::Baseline];
-    if Path::detected() != Path::Baseline {
-        paths.push(Path::detected());
-    }
     for (name, scheme) in [
         ("implicit", Scheme::Implicit),
         ("explicit", Scheme::Explicit),
@@ -64,7 +60,7 @@ fn case<H: BatchHysteresis>(c: &mut Criterion, label: &str, params: &Params<H>) 
                 black_box(params.step(&mut state, black_box(v[k]), DT, scheme))
             });
         });
-        for &path in &paths {
+        for &path in Path::available() {
             group.bench_function(BenchmarkId::new("tick", path.name()), |b| {
                 let mut state = params.relaxed_state();
                 let mut k = 0;
@@ -94,7 +90,7 @@ fn case<H: BatchHysteresis>(c: &mut Criterion, label: &str, params: &Params<H>) 
                 black_box(&out);
             });
         });
-        for &path in &paths {
+        for &path in Path::available() {
             group.bench_function(BenchmarkId::new("block", path.name()), |b| {
                 b.iter(|| {
                     let mut state = params.relaxed_state();

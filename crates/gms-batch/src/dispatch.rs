@@ -29,6 +29,15 @@ impl Path {
         }
     }
 
+    /// The paths this CPU runs: the baseline, and the detected one where it is another (what the
+    /// tests and benchmarks compare).
+    pub fn available() -> &'static [Path] {
+        match Path::detected() {
+            Path::Baseline => &[Path::Baseline],
+            Path::Avx2Fma => &[Path::Baseline, Path::Avx2Fma],
+        }
+    }
+
     /// The path's name, for benchmark reports: "baseline" or "avx2+fma".
     pub fn name(self) -> &'static str {
         match self {

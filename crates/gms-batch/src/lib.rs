@@ -157,7 +157,7 @@ pub fn run_on<H: BatchHysteresis>(
     }
     // No channels: `samples` is then not tied to the input's length (0 × anything), and
     // LANES × samples could overflow; gms-core's calls still check dt.
-    if states.is_empty() || samples == 0 || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
+    if states.is_empty() || samples == 0 || refused(dt) {
         // Nothing to step, or a dt gms-core refuses: its own calls say so.
         return run_scalar(params, states, input, samples, dt, scheme, signal, out);
     }
@@ -196,6 +196,12 @@ pub fn run_on<H: BatchHysteresis>(
         }
     }
     first_error
+}
+
+/// Whether gms-core refuses `dt` (not finite and positive, or subnormal): its own calls report
+/// that, so the kernel never runs on it.
+fn refused(dt: f64) -> bool {
+    !(dt.is_finite() && dt >= f64::MIN_POSITIVE)
 }
 
 /// The channels one by one through gms-core's block calls.
@@ -263,7 +269,7 @@ pub fn run_one_lane<H: BatchHysteresis>(
 ) -> bool {
     assert!(out.len() == input.len(), "input and output must be as long");
     // What `run_on` leaves to gms-core's calls, handed back.
-    if input.is_empty() || !(dt.is_finite() && dt >= f64::MIN_POSITIVE) {
+    if input.is_empty() || refused(dt) {
         return false;
     }
     dispatch::run_group::<H, 1>(

@@ -20,15 +20,6 @@ fn close(a: f64, b: f64) -> bool {
     difference <= TOLERANCE && std::env::var_os("GMS_BATCH_BITWISE").is_none()
 }
 
-/// The paths to check: the baseline always, and AVX2 where the CPU has it.
-fn paths() -> Vec<Path> {
-    let mut paths = vec![Path::Baseline];
-    if Path::detected() != Path::Baseline {
-        paths.push(Path::detected());
-    }
-    paths
-}
-
 /// Every channel through gms-core, first failing channel reported: what gms-dyn did before.
 #[allow(clippy::too_many_arguments)]
 fn scalar<H: BatchHysteresis>(
@@ -88,7 +79,7 @@ where
         signal,
         &mut expected,
     );
-    for path in paths() {
+    for &path in Path::available() {
         let mut states = start.to_vec();
         let mut out = vec![0.0; input.len()];
         let error = run_on(
@@ -585,7 +576,7 @@ fn bit_for_bit_on_the_benchmark_case() {
             &mut expected
         )
         .is_none());
-        for path in paths() {
+        for &path in Path::available() {
             let mut states = vec![params.relaxed_state(); channels];
             let mut out = vec![0.0; v.len()];
             assert!(run_on(
@@ -618,7 +609,7 @@ fn no_channels_with_any_sample_count() {
     let stribeck = Stribeck::new(1.0, 1.5, 1e-3, 2.0).expect("valid curve");
     let bank = MaxwellSlip::new([1.0, 1.0], [1e-6, 2e-6]).expect("valid bank");
     let params = Params::new(stribeck, 2.0, 30.0, 0.4, bank).expect("valid parameters");
-    for path in paths() {
+    for &path in Path::available() {
         for samples in [0, 1, 7, usize::MAX] {
             let result = run_on(
                 path,
@@ -666,7 +657,7 @@ where
         params
             .simulate(&mut expected_state, v, 1e-3, scheme, &mut expected)
             .unwrap();
-        for path in paths() {
+        for &path in Path::available() {
             let mut block_state = params.relaxed_state();
             let mut block = vec![0.0; v.len()];
             assert!(gms_batch::run_one_lane(
