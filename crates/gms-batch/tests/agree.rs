@@ -695,3 +695,49 @@ where
         }
     }
 }
+
+/// What the kernel does not step, `run_one_lane` hands back (false) with the state as it was:
+/// no samples, a dt gms-core refuses, a non-finite input.
+#[test]
+fn one_lane_hands_back_what_it_does_not_step() {
+    let params = standard::<3>();
+    let kernel = params.hysteresis().kernel();
+    let mut warmed = params.relaxed_state();
+    let mut out = [0.0; 4];
+    assert!(gms_batch::run_one_lane(
+        Path::Baseline,
+        &params,
+        &kernel,
+        &mut warmed,
+        &[1e-3; 4],
+        1e-3,
+        Scheme::Implicit,
+        &mut out
+    ));
+    let inputs: [(&[f64], f64); 6] = [
+        (&[], 1e-3),
+        (&[1e-3], 0.0),
+        (&[1e-3], f64::NAN),
+        (&[1e-3], f64::MIN_POSITIVE / 2.0),
+        (&[1e-3], -1e-3),
+        (&[1e-3, f64::NAN], 1e-3),
+    ];
+    for &path in Path::available() {
+        for (input, dt) in inputs {
+            let mut state = warmed;
+            let mut out = vec![0.0; input.len()];
+            let stepped = gms_batch::run_one_lane(
+                path,
+                &params,
+                &kernel,
+                &mut state,
+                input,
+                dt,
+                Scheme::Implicit,
+                &mut out,
+            );
+            assert!(!stepped, "{path:?}: {input:?} at dt {dt}");
+            assert_eq!(state, warmed, "{path:?}: {input:?} at dt {dt}");
+        }
+    }
+}
