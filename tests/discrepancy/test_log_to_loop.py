@@ -122,6 +122,7 @@ def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
         ("joint", -1.0), ("joint", False),
         ("drift", -0.5), ("drift", math.nan),
         ("unexplained", -1e-9), ("unexplained", math.inf),
+        ("second_look", -1.0), ("second_look", math.nan),
         ("rounds_samples", 4095), ("rounds_samples", 65_536.0), ("rounds_samples", True),
         ("rounds_samples", None),
     ],
@@ -150,13 +151,15 @@ def test_settings_of_another_type_are_refused() -> None:
 
 
 def test_the_report_echoes_the_settings() -> None:
-    chosen = Settings(chunks=8, significance=0.6, loss=0.25, joint=1.5, drift=1.2, unexplained=0.3)
+    chosen = Settings(
+        chunks=8, significance=0.6, loss=0.25, joint=1.5, drift=1.2, unexplained=0.3, second_look=5.0
+    )
     diagnosis = lr.diagnose(make_hidden(BASE, dt=8e-4, seed=3).data, BASE, settings=chosen)
     assert diagnosis.settings == chosen.to_dict()
     report = json.loads(diagnosis.to_json())
     assert report["settings"] == {
         "chunks": 8, "significance": 0.6, "loss": 0.25, "joint": 1.5, "drift": 1.2,
-        "unexplained": 0.3, "rounds_samples": 65_536,
+        "unexplained": 0.3, "second_look": 5.0, "rounds_samples": 65_536,
     }  # fmt: skip
 
 

@@ -37,6 +37,10 @@ class Settings:
     unexplained: float = 0.2
     """What remains is significant when its weighted mean square exceeds σ² by more than this many
     units."""
+    second_look: float = 1.0
+    """Where the raw encoder drives the rounds, the effects named again under a low-pass of it
+    replace theirs when that file lowers the squared error ``predict`` judges by more than this
+    many units (of the lower of the two floors)."""
     rounds_samples: int = 65_536
     """On a longer record the rounds name effects and choose the reconstruction on this many of
     its samples, in whole segments spread over it, and the written file is then fitted on the
@@ -57,7 +61,7 @@ class Settings:
                     value=value,
                     bound=low if integer else None,
                 )
-        for name in ("significance", "loss", "joint", "drift", "unexplained"):
+        for name in ("significance", "loss", "joint", "drift", "unexplained", "second_look"):
             value = getattr(self, name)
             if (
                 isinstance(value, bool)
