@@ -122,7 +122,7 @@ def test_the_compensator_reproduces_predict(ripple: Identification) -> None:
         ("joint", -1.0), ("joint", False),
         ("drift", -0.5), ("drift", math.nan),
         ("unexplained", -1e-9), ("unexplained", math.inf),
-        ("second_look", -1.0), ("second_look", math.nan),
+        ("second_look", -1.0), ("second_look", math.nan), ("second_look", -math.inf),
         ("rounds_samples", 4095), ("rounds_samples", 65_536.0), ("rounds_samples", True),
         ("rounds_samples", None),
     ],
@@ -131,6 +131,12 @@ def test_bad_settings_are_refused_naming_the_field(name: str, value: Any) -> Non
     with pytest.raises(InputError, match=rf"^`settings\.{name}` must be ") as caught:
         Settings(**{name: value})
     assert caught.value.field == f"settings.{name}"
+
+
+def test_an_infinite_second_look_is_none_and_reads_as_null() -> None:
+    assert Settings(second_look=math.inf).to_dict()["second_look"] is None
+    with pytest.raises(InputError, match=r"`settings\.significance` must be a finite number >= 0"):
+        Settings(significance=math.inf)
 
 
 def test_too_few_samples_for_the_rounds_are_refused_with_the_bound() -> None:

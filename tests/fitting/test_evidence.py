@@ -4,6 +4,7 @@ an encoder cannot place, and the encoder's step."""
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -209,6 +210,53 @@ def test_a_bank_over_a_few_counts_of_a_dithering_servo_is_named_under_a_low_pass
     assert sorted(found.diagnosis.named_effects) == ["inertia", "presliding_hysteresis", "stribeck"]
     assert found.model.reconstruction is not None and found.model.reconstruction.cutoff is not None
     assert lr.predict(found.model, record).rms < 1.2 * log.floor_rms
+
+
+def triangle_log(period: int, samples: int, kick: float) -> MotionData:
+    """An encoder (0.1 µm) on a triangle of 100 µm, a reversal every ``period``/2 samples at 1 kHz,
+    a Coulomb force that flips with its counts and noise of 0.01; at the 5 samples after each
+    reversal the force is ``kick`` higher, which no model of the catalogue follows."""
+    dt = 1e-3
+    phase = (np.arange(samples) % period) / period
+    x = np.round(2e-4 * np.where(phase < 0.5, phase, 1.0 - phase) / 1e-7) * 1e-7
+    direction = np.sign(np.diff(x, prepend=x[0]))
+    direction[0] = 1.0  # the triangle starts rising
+    after = (np.arange(samples) % (period // 2)) < 5
+    noise = 0.01 * np.random.default_rng(0).standard_normal(samples)
+    return MotionData(np.arange(samples) * dt, x, 2.0 * direction + kick * after + noise)
+
+
+def test_a_log_too_short_for_the_second_look_keeps_the_first() -> None:
+    # A reversal every 25 samples: under the raw encoder most of the 300 samples move outside the
+    # reversal windows; under a low-pass at a tenth of the Nyquist frequency, whose windows are
+    # wider by its half period, 40 do, too few to name effects on. The force flips with the
+    # encoder's counts, so the first file takes the raw position and the second look that low-pass.
+    record = triangle_log(50, 300, 0.0)
+    with pytest.raises(lr.DataError, match="no sliding motion"):
+        select.prepare(record, Reconstruction("position", 0.1 * 0.5 / record.dt), False)
+    found = lr.identify(record)
+    assert found.model.reconstruction == Reconstruction("position")
+    assert found.diagnosis.named_effects == []
+
+
+def test_the_second_look_runs_only_where_a_file_could_gain_and_is_on(monkeypatch: pytest.MonkeyPatch) -> None:
+    looks: list[Reconstruction] = []
+    rounds = select._rounds_and_file
+
+    def counted(record, whole, *rest, **named):  # type: ignore[no-untyped-def]
+        looks.append(whole.motion.reconstruction)
+        return rounds(record, whole, *rest, **named)
+
+    monkeypatch.setattr(select, "_rounds_and_file", counted)
+    kicked = triangle_log(200, 2000, 1.0)  # its file far above the noise
+    lr.identify(kicked)
+    assert looks[0] == Reconstruction("position") and looks[1].cutoff is not None
+    looks.clear()
+    lr.identify(kicked, settings=Settings(second_look=math.inf))
+    assert looks == [Reconstruction("position")]
+    looks.clear()
+    lr.identify(triangle_log(200, 2000, 0.0))  # its file at the noise
+    assert looks == [Reconstruction("position")]
 
 
 def test_the_force_held_before_the_axis_first_moves_is_not_evidence() -> None:

@@ -87,10 +87,10 @@ FILTERS = (0.2, 0.05)
 #: Cutoffs between them (steps of √2), read with the best refitted θ and refitted only where that
 #: already predicts better (:func:`choose_reconstruction`).
 BETWEEN = (0.2 / math.sqrt(2.0), 0.1, 0.05 * math.sqrt(2.0))
-#: Where the raw encoder drives the rounds and the file takes it too, they are run again under the
-#: encoder position through a zero-phase low-pass at this share of the Nyquist frequency
+#: Where the raw encoder drives the rounds and the file takes it too, the second look runs them
+#: under the encoder position through a zero-phase low-pass at this share of the Nyquist frequency
 #: (:func:`select`).
-SECOND_LOOK = 0.1
+SECOND_LOOK_CUTOFF = 0.1
 #: Effects that can stand in for each other: an offset and a −x level of its own both shift the
 #: level of one direction of motion against the other's.
 STAND_INS = (("offset", "asymmetry"),)
@@ -209,43 +209,58 @@ def select(
     """The rounds on ``record`` from the effects ``baseline`` (module documentation).
 
     Where the raw encoder drives them, they are run a second time under the encoder position
-    through a low-pass (the one the first file chose, else at :data:`SECOND_LOOK` of the Nyquist
-    frequency), and the second is kept when its written file predicts the log better by more
-    than ``second_look`` units (:func:`_better`). A bank whose friction builds up over a few
-    counts sees every count of a slow or dithering encoder as a step of its build-up under the
-    raw position, so that even the true law misses there, and no candidate gains on the weighted
-    samples: the family's held_24 of seed base 8000 (a PID loop holding targets at 5 kHz, 2²⁰
-    counts a turn, presliding over 2–42 counts) has its true law at 56.6 times the noise raw and
-    21.1 times through a low-pass at a tenth of the Nyquist frequency; named raw, its file held
-    inertia alone, at 76.9 times. The second run reads no floor from its baseline
-    (:func:`_select_on`)."""
+    through a low-pass (the one the first file chose, else at :data:`SECOND_LOOK_CUTOFF` of the
+    Nyquist frequency), and the second is kept when its written file predicts the log better by
+    more than ``second_look`` units (:func:`_kept`); not where the first file is within
+    √(1 + ``second_look``) times the noise, since no file predicts below the noise.
+
+    A bank whose friction builds up over a few counts sees every count of a slow or dithering
+    encoder as a step of its build-up under the raw position, so that even the true law misses
+    there, and no candidate gains on the weighted samples: the family's held_24 of seed base 8000
+    (a PID loop holding targets at 5 kHz, 2²⁰ counts a turn, presliding over 2–42 counts) has
+    its true law at 56.6 times the noise raw and 21.1 times through a low-pass at a tenth of the
+    Nyquist frequency; named raw, its file held inertia alone, at 76.9 times. The second run
+    reads no floor from its baseline (:func:`_select_on`)."""
     say = progress or (lambda _: None)
     structure = Structure(frozenset(baseline))
     noisy = noisy_position(record.x, record.dt)
     reconstruction = rounds_reconstruction(record, noisy)
-    first = _named(record, reconstruction, noisy, structure, settings, say, read_floor=True)
-    if reconstruction != Reconstruction("position"):
+    whole, scales = prepare(record, reconstruction, noisy)
+    first = _rounds_and_file(record, whole, scales, noisy, structure, settings, say, read_floor=True)
+    if reconstruction != Reconstruction("position"):  # a logged velocity, or a noisy position
         return first
-    second_look = first.file_reconstruction
-    if second_look.cutoff is None:
-        second_look = Reconstruction("position", SECOND_LOOK * 0.5 / record.dt)
-    say(f"naming again under {describe(second_look)}")
-    second = _named(record, second_look, noisy, structure, settings, say, read_floor=False)
-    return _better(first, second, settings, say)
+    error = full_mse(first.written, first.file_target)
+    if not error > (1.0 + settings.second_look) * first.noise**2:
+        # Its file cannot gain that much: no file predicts below the noise.
+        return first
+    low_pass = first.file_reconstruction
+    if low_pass.cutoff is None:
+        low_pass = Reconstruction("position", SECOND_LOOK_CUTOFF * 0.5 / record.dt)
+    try:
+        whole, scales = prepare(record, low_pass, noisy)
+    except DataError:
+        # Too few samples move between the low-pass's wider reversal windows.
+        say(f"no second look under {describe(low_pass)}: too few samples move outside its reversals")
+        return first
+    say(f"naming again under {describe(low_pass)}")
+    second = _rounds_and_file(record, whole, scales, noisy, structure, settings, say, read_floor=False)
+    return _kept(first, second, settings, say)
 
 
-def _named(
+def _rounds_and_file(
     record: MotionData,
-    reconstruction: Reconstruction,
+    whole: Target,
+    scales: Scales,
     noisy: bool,
     structure: Structure,
     settings: Settings,
     say: Progress,
     read_floor: bool,
 ) -> Selection:
-    """The rounds under ``reconstruction`` and the file written from them; ``read_floor``: whether
-    the rounds start from the baseline's floor (:func:`_select_on`)."""
-    whole, scales = prepare(record, reconstruction, noisy)
+    """The rounds on ``whole`` (:func:`prepare` of ``record`` under the reconstruction to name
+    effects under) and the file written from them; ``read_floor``: whether the rounds start from
+    the baseline's floor (:func:`_select_on`)."""
+    reconstruction = whole.motion.reconstruction
     sample = segments(whole.motion, float(scales.grid[-1]), settings.rounds_samples)
     if sample is None:
         run = _select_on(structure, whole, scales, settings, say, read_floor)
@@ -272,21 +287,22 @@ def _named(
                      int(np.count_nonzero(gross)))  # fmt: skip
 
 
-def _better(first: Selection, second: Selection, settings: Settings, say: Progress) -> Selection:
+def _kept(first: Selection, second: Selection, settings: Settings, say: Progress) -> Selection:
     """``second`` where its written file predicts the log better than ``first``'s by more than
     ``second_look`` units, counted as ``predict`` counts them (the squared error over every
-    judged sample), in the unit of the lower of the two floors; ``first`` otherwise.
+    judged sample), the unit max(σ², floor²) with the first's σ and the lower of the two floors;
+    ``first`` otherwise.
 
     Named under a low-pass without a floor, the second run names a presliding bank where there is
-    none (on 25 of the 40 such logs among the family's 48 without `v`, seed bases 0, 3000, 7000
-    and 8000), standing in for the filter's smearing of a stiff flip; where it named wrongly (31
-    logs) its file gained at most 0.87 units. It replaced the first on two, both then named
-    exactly: held_10 of seed base 7000 (1.78 units) and held_24 of 8000 (17.2)."""
+    none, standing in for the filter's smearing of a stiff flip: on 25 of the 40 logs without
+    one among the family's 48 without `v` (seed bases 0, 3000, 7000 and 8000). Where it named
+    wrongly (31 logs) its file gained at most 0.87 units. It replaced the first on two, both then
+    named exactly: held_10 of seed base 7000 (1.78 units) and held_24 of 8000 (17.2)."""
     errors = [full_mse(one.written, one.file_target) for one in (first, second)]
     floor = min(first.floor.full, second.floor.full)
-    unit = max(first.noise**2, floor**2, (1e-12 * first.scales.force) ** 2)
-    gain = (errors[0] - errors[1]) / unit
+    gain = (errors[0] - errors[1]) / _unit(first.noise, Floor(floor, floor), first.scales)
     if not gain > settings.second_look:
+        say(f"kept the first: the second look's file gains {gain:.2f} units")
         return first
     say(f"named under {describe(second.reconstruction)}: its file gains {gain:.2f} units")
     return second
@@ -379,7 +395,8 @@ def _select_on(
     read_floor: bool = True,
 ) -> _Run:
     """The rounds on ``target`` (module documentation), from the baseline's floor where
-    ``read_floor``, else from none: the final model's floor is read from what it leaves either way.
+    ``read_floor``, else from none: then they count in units of σ² alone, and the floor is only
+    the part :func:`_rounds_and_file` reads at the reversals from what the final model leaves.
 
     The floor is that of the model it is read with. Under a low-pass of an encoder, the
     baseline's stiff element flips fully at every reversal of the filtered position (a dither by

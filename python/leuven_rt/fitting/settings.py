@@ -7,6 +7,7 @@ the same whether the model is far from the data or close to it."""
 
 from __future__ import annotations
 
+import math
 import numbers
 from dataclasses import asdict, dataclass
 from typing import Any
@@ -40,7 +41,8 @@ class Settings:
     second_look: float = 1.0
     """Where the raw encoder drives the rounds, the effects named again under a low-pass of it
     replace theirs when that file lowers the squared error ``predict`` judges by more than this
-    many units (of the lower of the two floors)."""
+    many units (σ² of the first rounds, or the lower of the two files' floors squared); ``inf``:
+    no second look."""
     rounds_samples: int = 65_536
     """On a longer record the rounds name effects and choose the reconstruction on this many of
     its samples, in whole segments spread over it, and the written file is then fitted on the
@@ -63,18 +65,23 @@ class Settings:
                 )
         for name in ("significance", "loss", "joint", "drift", "unexplained", "second_look"):
             value = getattr(self, name)
+            # inf turns the second look off; every other threshold must be one a gain can reach.
+            off = name == "second_look"
             if (
                 isinstance(value, bool)
                 or not isinstance(value, numbers.Real)
-                or not 0.0 <= float(value) < float("inf")
+                or not 0.0 <= float(value)
+                or not (math.isfinite(float(value)) or (off and float(value) == math.inf))
             ):
                 real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+                what = "a number >= 0 (inf: none)" if off else "a finite number >= 0"
                 raise InputError(
-                    f"`settings.{name}` must be a finite number >= 0, got {shown(value)!r:.80}",
+                    f"`settings.{name}` must be {what}, got {shown(value)!r:.80}",
                     kind="negative" if real else "not_real",
                     field=f"settings.{name}",
                     value=value,
                 )
 
-    def to_dict(self) -> dict[str, float]:
-        return asdict(self)
+    def to_dict(self) -> dict[str, float | None]:
+        """The settings as JSON values: an ``inf`` (no second look) as None."""
+        return {name: None if value == math.inf else value for name, value in asdict(self).items()}
