@@ -275,7 +275,7 @@ def _rounds_and_file(
     if reconstruction.source == "position" or np.any(target.judged & (target.weight == 0)):
         floor = with_reversals(floor, full_mse(final, target), final.mse)
     say("choosing how the written file reconstructs the motion")
-    file = choose_reconstruction(record, without, noisy, sample)
+    file = choose_reconstruction(record, without, noisy, reconstruction, sample)
     if sample is not None:
         say("fitting the written file on the whole record")
     written = fit(without.structure, file[2], file[1], file[3].theta)
@@ -969,11 +969,12 @@ def _every_sample(samples: int) -> FloatArray:
     return weight
 
 
-def reconstruction_options(record: MotionData, noisy: bool) -> list[Reconstruction]:
+def reconstruction_options(record: MotionData, rounds: Reconstruction) -> list[Reconstruction]:
     """The reconstructions the written file may use (docs/data-and-reports.md#reconstruction):
-    that of the rounds, and the encoder position through zero-phase low-passes."""
+    ``rounds``, the one the rounds named its effects under, and the encoder position through
+    zero-phase low-passes."""
     nyquist = 0.5 / record.dt
-    options = [rounds_reconstruction(record, noisy)]
+    options = [rounds]
     if record.v is not None:
         options.append(Reconstruction("position"))
     options += [Reconstruction("position", share * nyquist) for share in FILTERS]
@@ -998,17 +999,23 @@ def _judged_error(force: FloatArray, target: Target) -> FloatArray:
 
 
 def choose_reconstruction(
-    record: MotionData, fitted: Fitted, noisy: bool, sample: Sample | None = None, iterations: int = SCREEN
+    record: MotionData,
+    fitted: Fitted,
+    noisy: bool,
+    rounds: Reconstruction,
+    sample: Sample | None = None,
+    iterations: int = SCREEN,
 ) -> tuple[Reconstruction, Target, Scales, Fitted]:
     """The reconstruction under which ``fitted``'s structure, refitted, predicts the log best over
-    every sample, with its target (the whole record's), scales and fit (on ``sample`` when
-    given, :mod:`.sample`). The file is judged as ``predict`` judges it: by the squared error
+    every sample, among :func:`reconstruction_options` (``rounds``: the one ``fitted`` was named
+    under), with its target (the whole record's), scales and fit (on ``sample`` when given,
+    :mod:`.sample`). The file is judged as ``predict`` judges it: by the squared error
     over every sample but the filters' edges, so it is fitted that way too (no robust loss, the
     reversals the rounds leave out included): the error at a reversal is part of what a
     compensator driven by this signal gives. Whether the written file is then counted robustly is
     :func:`_robustly`'s choice."""
     options = (
-        _option_target(record, option, noisy, sample) for option in reconstruction_options(record, noisy)
+        _option_target(record, option, noisy, sample) for option in reconstruction_options(record, rounds)
     )
     prepared = [one for one in options if one is not None]
     refitted = each(lambda on: fit(fitted.structure, on[2], on[1], fitted.theta, iterations), prepared)
