@@ -81,9 +81,13 @@ def test_the_report_follows_the_documented_layout() -> None:
     diagnosis = identification.diagnosis
     report = json.loads(diagnosis.to_json())
     assert list(report) == [
-        "samples", "noise_std", "floor_estimate", "reconstruction", "gross_errors", "baseline", "rms_before",
-        "rms_after", "named_effects", "steps", "unexplained", "settings", "final_model",
+        "samples", "noise_std", "floor_estimate", "reconstruction", "named_under", "gross_errors", "baseline",
+        "rms_before", "rms_after", "named_effects", "steps", "unexplained", "settings", "final_model",
     ]  # fmt: skip
+    # a logged velocity: the effects are named under what the written file is driven by
+    assert report["named_under"] == report["reconstruction"] == {
+        "source": "velocity", "cutoff": None, "description": report["reconstruction"]["description"]
+    }  # fmt: skip
     assert report["samples"] == diagnosis.samples and report["baseline"] == list(BASE)
     assert report["named_effects"] == ["inertia"]
     (step,) = report["steps"]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -131,12 +132,38 @@ def test_bad_settings_are_refused_naming_the_field(name: str, value: Any) -> Non
     with pytest.raises(InputError, match=rf"^`settings\.{name}` must be ") as caught:
         Settings(**{name: value})
     assert caught.value.field == f"settings.{name}"
+    if isinstance(value, float) and name not in ("chunks", "rounds_samples"):  # named by what is wrong
+        assert caught.value.kind == ("negative" if value < 0 else "not_finite_value")
 
 
 def test_an_infinite_second_look_is_none_and_reads_as_null() -> None:
     assert Settings(second_look=math.inf).to_dict()["second_look"] is None
     with pytest.raises(InputError, match=r"`settings\.significance` must be a finite number >= 0"):
         Settings(significance=math.inf)
+
+
+def test_settings_of_numpy_and_other_number_types_are_kept_as_plain_json_numbers() -> None:
+    chosen = Settings(chunks=np.int64(8), significance=Fraction(1, 2), loss=np.float32(0.25), joint=2)
+    assert json.loads(json.dumps(chosen.to_dict())) == {
+        "chunks": 8, "significance": 0.5, "loss": 0.25, "joint": 2.0, "drift": 1.0,
+        "unexplained": 0.2, "second_look": 1.0, "rounds_samples": 65_536,
+    }  # fmt: skip
+    with pytest.raises(InputError, match=r"`settings\.joint` must be a finite number >= 0") as caught:
+        Settings(joint=10**400)  # beyond the float range
+    assert caught.value.kind == "not_finite_value"
+
+
+def test_an_infinite_second_look_is_echoed_as_null_in_the_report_and_the_file() -> None:
+    def refused(constant: str) -> None:
+        raise AssertionError(f"{constant} is not JSON")
+
+    off = Settings(second_look=math.inf)
+    found = lr.identify(make_hidden(BASE, dt=8e-4, seed=3).data, BASE, settings=off)
+    assert found.diagnosis.settings == off.to_dict()
+    report = json.loads(found.diagnosis.to_json(), parse_constant=refused)
+    written = json.loads(found.model.to_json(), parse_constant=refused)
+    assert report["settings"]["second_look"] is None
+    assert written["report"]["settings"]["second_look"] is None
 
 
 def test_too_few_samples_for_the_rounds_are_refused_with_the_bound() -> None:

@@ -209,6 +209,9 @@ def test_a_bank_over_a_few_counts_of_a_dithering_servo_is_named_under_a_low_pass
     found = lr.identify(record)
     assert sorted(found.diagnosis.named_effects) == ["inertia", "presliding_hysteresis", "stribeck"]
     assert found.model.reconstruction is not None and found.model.reconstruction.cutoff is not None
+    # the report says the effects were named under a low-pass, the second look's
+    named_under = found.diagnosis.to_dict()["named_under"]
+    assert named_under["source"] == "position" and named_under["cutoff"] is not None
     assert lr.predict(found.model, record).rms < 1.2 * log.floor_rms
 
 
@@ -237,6 +240,12 @@ def test_a_log_too_short_for_the_second_look_keeps_the_first() -> None:
     found = lr.identify(record)
     assert found.model.reconstruction == Reconstruction("position")
     assert found.diagnosis.named_effects == []
+    assert found.diagnosis.to_dict()["named_under"] == found.diagnosis.to_dict()["reconstruction"]
+    # the story says what the effects were named under only where the file is driven otherwise
+    assert "named with it driven by" not in found.diagnosis.story()
+    lighter = {**Reconstruction("position", 50.0).to_dict(), "description": "D"}
+    story = dataclasses.replace(found.diagnosis, named_under=lighter).story()
+    assert "the effects were named with it driven by D" in story
 
 
 def test_the_second_look_runs_only_where_a_file_could_gain_and_is_on(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -151,13 +151,14 @@ def _identification(
         where = f"the friction level changes over the record (a drift, outside the catalogue); {where}"
     elif significant and (strongest := left.strongest()) is not None:
         where = f"it follows the {strongest}; {where}"
-    described = {**reconstruction.to_dict(), "description": describe(reconstruction)}
+    described, named_under = ({**one.to_dict(), "description": describe(one)}
+                              for one in (reconstruction, run.reconstruction))  # fmt: skip
     diagnosis = Diagnosis(
         samples=record.samples, noise_std=run.noise, floor_estimate=run.floor.full, reconstruction=described,
-        gross_errors=run.gross,
+        named_under=named_under, gross_errors=run.gross,
         baseline=baseline, rms_before=_rms(residuals[0]), rms_after=prediction.rms, steps=steps,
         unexplained_significant=bool(significant), unexplained_where=where, drift=run.drift,
-        settings=dataclasses.asdict(settings),
+        settings=settings.to_dict(),
         final_model={key: value for key, value in written.to_dict().items() if key != "report"},
         regions_before=layout.regions(residuals[0]), regions_after=layout.regions(residuals[-1]),
         layout=layout,

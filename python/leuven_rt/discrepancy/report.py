@@ -42,6 +42,9 @@ class Diagnosis:
     floor_estimate: float
     """The error the right model would still have with this log's motion signal [N or N·m]."""
     reconstruction: dict[str, Any]
+    named_under: dict[str, Any]
+    """The reconstruction the effects were named under, as ``reconstruction`` says it: the logged
+    velocity, the raw encoder, or a low-pass of it (a noisy position, or the second look)."""
     gross_errors: int
     """Samples the fit left out as gross errors (beyond 5 times the noise of the final model)."""
     baseline: tuple[str, ...]
@@ -76,6 +79,7 @@ class Diagnosis:
             "noise_std": self.noise_std,
             "floor_estimate": self.floor_estimate,
             "reconstruction": self.reconstruction,
+            "named_under": self.named_under,
             "gross_errors": self.gross_errors,
             "baseline": list(self.baseline),
             "rms_before": self.rms_before,
@@ -112,6 +116,11 @@ class Diagnosis:
             f"{self.samples} samples; force noise {self.noise_std:.3g} {N}; the floor this log allows "
             f"{self.floor_estimate:.3g} {N} (the error of the right model driven by what the log gives)",
             f"the model is driven by {self.reconstruction['description']}",
+            *(
+                [f"the effects were named with it driven by {self.named_under['description']}"]
+                if self.named_under != self.reconstruction
+                else []
+            ),
             *(
                 [
                     f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors "

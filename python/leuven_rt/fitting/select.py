@@ -227,7 +227,7 @@ def select(
     reconstruction = rounds_reconstruction(record, noisy)
     whole, scales = prepare(record, reconstruction, noisy)
     first = _rounds_and_file(record, whole, scales, noisy, structure, settings, say, read_floor=True)
-    if reconstruction != Reconstruction("position"):  # a logged velocity, or a noisy position
+    if not raw_encoder(reconstruction):  # a logged velocity, or a noisy position
         return first
     error = full_mse(first.written, first.file_target)
     if not error > (1.0 + settings.second_look) * first.noise**2:
@@ -244,7 +244,7 @@ def select(
         return first
     say(f"naming again under {describe(low_pass)}")
     second = _rounds_and_file(record, whole, scales, noisy, structure, settings, say, read_floor=False)
-    return _kept(first, second, settings, say)
+    return _kept(first, error, second, settings, say)
 
 
 def _rounds_and_file(
@@ -287,20 +287,20 @@ def _rounds_and_file(
                      int(np.count_nonzero(gross)))  # fmt: skip
 
 
-def _kept(first: Selection, second: Selection, settings: Settings, say: Progress) -> Selection:
+def _kept(first: Selection, error: float, second: Selection, settings: Settings, say: Progress) -> Selection:
     """``second`` where its written file predicts the log better than ``first``'s by more than
     ``second_look`` units, counted as ``predict`` counts them (the squared error over every
-    judged sample), the unit max(σ², floor²) with the first's σ and the lower of the two floors;
-    ``first`` otherwise.
+    judged sample; ``error``: the first file's), the unit max(σ², floor²) with the first's σ and
+    the lower of the two floors; ``first`` otherwise.
 
     Named under a low-pass without a floor, the second run names a presliding bank where there is
     none, standing in for the filter's smearing of a stiff flip: on 25 of the 40 logs without
     one among the family's 48 without `v` (seed bases 0, 3000, 7000 and 8000). Where it named
     wrongly (31 logs) its file gained at most 0.87 units. It replaced the first on two, both then
     named exactly: held_10 of seed base 7000 (1.78 units) and held_24 of 8000 (17.2)."""
-    errors = [full_mse(one.written, one.file_target) for one in (first, second)]
     floor = min(first.floor.full, second.floor.full)
-    gain = (errors[0] - errors[1]) / _unit(first.noise, Floor(floor, floor), first.scales)
+    unit = _unit(first.noise, Floor(floor, floor), first.scales)
+    gain = (error - full_mse(second.written, second.file_target)) / unit
     if not gain > settings.second_look:
         say(f"kept the first: the second look's file gains {gain:.2f} units")
         return first
@@ -959,6 +959,12 @@ def rounds_reconstruction(record: MotionData, noisy: bool) -> Reconstruction:
     if noisy:
         return Reconstruction("position", FILTERS[0] * 0.5 / record.dt)
     return Reconstruction("position")
+
+
+def raw_encoder(rounds: Reconstruction) -> bool:
+    """Whether ``rounds`` (:func:`rounds_reconstruction`'s choice) is the raw encoder position:
+    no logged velocity, and a position that is an encoder's counts rather than a noisy one."""
+    return rounds == Reconstruction("position")
 
 
 def _every_sample(samples: int) -> FloatArray:

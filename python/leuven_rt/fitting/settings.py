@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -52,6 +53,7 @@ class Settings:
     thresholds were set on, which are identified whole."""
 
     def __post_init__(self) -> None:
+        # Each value is kept as a plain int or float, so that the report echoes it as JSON.
         for name, low in (("chunks", 2), ("rounds_samples", MIN_ROUNDS_SAMPLES)):
             value: Any = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
@@ -63,25 +65,32 @@ class Settings:
                     value=value,
                     bound=low if integer else None,
                 )
+            object.__setattr__(self, name, int(value))
         for name in ("significance", "loss", "joint", "drift", "unexplained", "second_look"):
             value = getattr(self, name)
             # inf turns the second look off; every other threshold must be one a gain can reach.
             off = name == "second_look"
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, numbers.Real)
-                or not 0.0 <= float(value)
-                or not (math.isfinite(float(value)) or (off and float(value) == math.inf))
-            ):
-                real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+            highest = math.inf if off else sys.float_info.max
+            real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+            number = _float(value) if real else math.nan
+            if not 0.0 <= number <= highest:
                 what = "a number >= 0 (inf: none)" if off else "a finite number >= 0"
                 raise InputError(
                     f"`settings.{name}` must be {what}, got {shown(value)!r:.80}",
-                    kind="negative" if real else "not_real",
+                    kind="not_real" if not real else "negative" if number < 0 else "not_finite_value",
                     field=f"settings.{name}",
                     value=value,
                 )
+            object.__setattr__(self, name, number)
 
-    def to_dict(self) -> dict[str, float | None]:
+    def to_dict(self) -> dict[str, int | float | None]:
         """The settings as JSON values: an ``inf`` (no second look) as None."""
         return {name: None if value == math.inf else value for name, value in asdict(self).items()}
+
+
+def _float(value: Any) -> float:
+    """``value`` as a float; an integer beyond the float range as inf (refused as not finite)."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
