@@ -29,7 +29,7 @@ from ..fitting.settings import Settings
 from ..fitting.solve import Fitted, fit
 from ..fitting.structure import Structure, parse_effects
 from ..fitting.undetermined import Undetermined, settle
-from ..modelfile import ModelFile
+from ..modelfile import ModelFile, Reconstruction
 from ..params import Params
 from ..prediction import predict
 from ..progress import Progress, reporting
@@ -151,11 +151,10 @@ def _identification(
         where = f"the friction level changes over the record (a drift, outside the catalogue); {where}"
     elif significant and (strongest := left.strongest()) is not None:
         where = f"it follows the {strongest}; {where}"
-    described, named_under = ({**one.to_dict(), "description": describe(one)}
-                              for one in (reconstruction, run.reconstruction))  # fmt: skip
     diagnosis = Diagnosis(
-        samples=record.samples, noise_std=run.noise, floor_estimate=run.floor.full, reconstruction=described,
-        named_under=named_under, gross_errors=run.gross,
+        samples=record.samples, noise_std=run.noise, floor_estimate=run.floor.full,
+        reconstruction=_described(reconstruction), named_under=_described(run.reconstruction),
+        gross_errors=run.gross,
         baseline=baseline, rms_before=_rms(residuals[0]), rms_after=prediction.rms, steps=steps,
         unexplained_significant=bool(significant), unexplained_where=where, drift=run.drift,
         settings=settings.to_dict(),
@@ -171,6 +170,11 @@ def _identification(
         report["data_notes"] = list(record.notes)
     model = dataclasses.replace(written, report=report)
     return Identification(model, diagnosis, tuple(warnings))
+
+
+def _described(reconstruction: Reconstruction) -> dict[str, Any]:
+    """``reconstruction`` as the report gives it: its file keys and a description in words."""
+    return {**reconstruction.to_dict(), "description": describe(reconstruction)}
 
 
 def _params(effect: str, fitted: Fitted, written: ModelFile) -> dict[str, Any]:
