@@ -5,6 +5,7 @@ the noise (a logged velocity: the floor is the noise itself)."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -35,6 +36,22 @@ def test_hidden_effects_are_named_exactly(truth: tuple[str, ...], with_velocity:
     if with_velocity:
         # The log gives the model what it needs: the written file ends at the noise.
         assert lr.predict(identification.model, hidden.data).rms <= 1.2 * hidden.noise_std, diagnosis.story()
+
+
+def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apart() -> None:
+    """An offset smaller than both levels is held as well by levels of their own for −x: the
+    report gives what the asymmetry gains in the offset's place, and the story says the log does
+    not tell the two apart."""
+    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+    assert diagnosis.named_effects == ["offset"]
+    [pair] = json.loads(diagnosis.to_json())["stand_ins"]
+    assert set(pair) == {"named", "stand_in", "gain"}
+    assert (pair["named"], pair["stand_in"]) == ("offset", "asymmetry")
+    assert abs(pair["gain"]) < 0.01
+    told = "`asymmetry` in place of `offset`: gains 0.00 units of max(σ², floor²), an effect counts above 0.5"
+    assert f"{told}: this log does not tell the two apart" in diagnosis.story().splitlines()
+    worse = dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": -3.0}]).story()
+    assert "`offset` explains the log better" in worse
 
 
 def test_presliding_is_the_modified_leuven_bank() -> None:
@@ -82,8 +99,10 @@ def test_the_report_follows_the_documented_layout() -> None:
     report = json.loads(diagnosis.to_json())
     assert list(report) == [
         "samples", "noise_std", "floor_estimate", "reconstruction", "named_under", "gross_errors", "baseline",
-        "rms_before", "rms_after", "named_effects", "steps", "unexplained", "settings", "final_model",
+        "rms_before", "rms_after", "named_effects", "steps", "stand_ins", "unexplained", "settings",
+        "final_model",
     ]  # fmt: skip
+    assert report["stand_ins"] == []  # neither an offset nor an asymmetry named
     # a logged velocity: the effects are named under what the written file is driven by
     assert report["named_under"] == report["reconstruction"] == {
         "source": "velocity", "cutoff": None, "description": report["reconstruction"]["description"]

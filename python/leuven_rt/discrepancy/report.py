@@ -51,6 +51,9 @@ class Diagnosis:
     rms_before: float
     rms_after: float
     steps: list[Step]
+    stand_ins: list[dict[str, Any]]
+    """Each named effect that has a stand-in (an offset, an asymmetry), the stand-in and what it
+    gains fitted in the named one's place, in units of evidence (negative: it does worse)."""
     unexplained_significant: bool
     unexplained_where: str
     drift: bool
@@ -97,6 +100,7 @@ class Diagnosis:
                 }
                 for s in self.steps
             ],
+            "stand_ins": self.stand_ins,
             "unexplained": {
                 "significant": self.unexplained_significant,
                 "where": self.unexplained_where,
@@ -143,6 +147,18 @@ class Diagnosis:
                          f"{step.robust_after:.3g} {N}); where: {step.where}")  # fmt: skip
         if not self.steps:
             lines.append("no catalogue effect improves the model significantly")
+        significance = self.settings["significance"]
+        for pair in self.stand_ins:
+            gain = pair["gain"]
+            told = (
+                "this log does not tell the two apart"
+                if abs(gain) <= significance
+                else f"`{pair['named']}` explains the log better"
+                if gain < 0
+                else "but not evenly over the record"
+            )
+            lines.append(f"`{pair['stand_in']}` in place of `{pair['named']}`: gains {gain:.2f} units of "
+                         f"max(σ², floor²), an effect counts above {significance:g}: {told}")  # fmt: skip
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
         ratio = self.rms_after / max(self.noise_std, 1e-300)
         lines.append(f"final model: rms {self.rms_after:.3g} {N} ({ratio:.2f}x "
