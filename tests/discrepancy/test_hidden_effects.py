@@ -6,7 +6,9 @@ the noise (a logged velocity: the floor is the noise itself)."""
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import json
+from typing import Any
 
 import numpy as np
 import pytest
@@ -14,8 +16,11 @@ import pytest
 import leuven_rt as lr
 from leuven_rt.discrepancy import CATALOGUE
 from leuven_rt.discrepancy.hidden import make_hidden
+from leuven_rt.fitting.select import Selection, StandIn
 
 BASE = ("coulomb", "viscous")
+#: The module, which ``leuven_rt.discrepancy.identify`` (the function) hides.
+identify_module = importlib.import_module("leuven_rt.discrepancy.identify")
 DT = 8e-4
 SINGLE = [(*BASE, effect) for effect in CATALOGUE if effect not in BASE]
 PAIRS = [
@@ -50,8 +55,44 @@ def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apar
     assert abs(pair["gain"]) < 0.01
     told = "`asymmetry` in place of `offset`: gains 0.00 units of max(σ², floor²), an effect counts above 0.5"
     assert f"{told}: this log does not tell the two apart" in diagnosis.story().splitlines()
-    worse = dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": -3.0}]).story()
-    assert "`offset` explains the log better" in worse
+
+    def told(gain: float) -> str:
+        return dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": gain}]).story()
+
+    assert "in place of `offset`: gains 0.00 units" in told(-0.001)  # never "-0.00"
+    assert (
+        "gains -3.00 units of max(σ², floor²), an effect counts above 0.5: it does worse in its place"
+        in told(-3.0)
+    )
+    assert "does not tell the two apart" not in told(-0.51) and "does not tell the two apart" in told(-0.5)
+    assert ": it gains more, but not one-sidedly over the record" in told(0.6)
+
+
+def test_no_stand_in_is_reported_for_an_effect_the_file_lacks(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """An effect whose parameter the excitation leaves undetermined can be gone from the file
+    (:mod:`leuven_rt.fitting.undetermined`): the report gives no stand-in for it."""
+    chosen = identify_module.select
+
+    def with_a_stray_pair(*arguments: Any) -> Selection:
+        run = chosen(*arguments)
+        return dataclasses.replace(run, stand_ins=[*run.stand_ins, StandIn("asymmetry", "offset", 0.0)])
+
+    monkeypatch.setattr(identify_module, "select", with_a_stray_pair)
+    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+    assert [pair["named"] for pair in diagnosis.stand_ins] == ["offset"]
+
+
+def test_the_verdict_on_what_remains_sets_the_gross_errors_aside() -> None:
+    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+    assert diagnosis.gross_errors == 0 and not diagnosis.unexplained_significant
+    last = diagnosis.story().splitlines()[-1]
+    assert "what remains is no more than noise and the floor: " in last
+    gross = dataclasses.replace(diagnosis, gross_errors=1324).story().splitlines()[-1]
+    assert "what remains is no more than noise and the floor, the 1324 gross errors aside: " in gross
+    significant = dataclasses.replace(diagnosis, gross_errors=1324, unexplained_significant=True)
+    assert "what remains is significant: " in significant.story().splitlines()[-1]
 
 
 def test_presliding_is_the_modified_leuven_bank() -> None:

@@ -133,14 +133,27 @@ def test_an_offset_within_both_levels_and_its_asymmetry_are_not_told_apart() -> 
     offset's place, which the report says. Screened from the levels as the offset's removal
     leaves them, the asymmetry stops far from that."""
     base, final, steps, target, scales = named(log(SYMMETRIC, offset=0.3), "offset")
-    _, kept_steps, stand_ins = select._exchange(base, final, steps, scales, target, Settings(), UNIT, print)
+    settings = Settings()
+    _, kept_steps, stand_ins = select._exchange(
+        base, final, steps, scales, target, settings, UNIT, lambda _: None
+    )
     assert kept_steps is steps
     [pair] = stand_ins
     assert (pair.named, pair.stand_in) == ("offset", "asymmetry")
-    assert abs(pair.gain) < 0.1 * Settings().significance
+    assert abs(pair.gain) < 0.1 * settings.significance
     structure = final.structure.without("offset").with_effect("asymmetry")
     held = fit(structure, scales, target, select._held(final, structure, scales), select.SCREEN)
-    assert (final.mse - held.mse) / UNIT < -Settings().significance
+    assert (final.mse - held.mse) / UNIT < -settings.significance
+
+
+def test_no_stand_in_is_tried_where_both_are_named() -> None:
+    base, final, steps, target, scales = named(log(ASYMMETRIC), "offset")
+    both = fit(final.structure.with_effect("asymmetry"), scales, target, final.theta)
+    steps = [*steps, Step("asymmetry", final, both)]
+    kept, kept_steps, stand_ins = select._exchange(
+        base, both, steps, scales, target, Settings(), UNIT, lambda _: None
+    )
+    assert kept is both and kept_steps is steps and stand_ins == []
 
 
 def test_a_pair_is_exchanged_once_per_pass(monkeypatch: pytest.MonkeyPatch) -> None:

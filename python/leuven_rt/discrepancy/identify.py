@@ -156,7 +156,8 @@ def _identification(
         reconstruction=_described(reconstruction), named_under=_described(run.reconstruction),
         gross_errors=run.gross,
         baseline=baseline, rms_before=_rms(residuals[0]), rms_after=prediction.rms, steps=steps,
-        stand_ins=[dataclasses.asdict(pair) for pair in run.stand_ins],
+        # An effect whose parameter the excitation leaves undetermined may be gone from the file.
+        stand_ins=[dataclasses.asdict(pair) for pair in run.stand_ins if final.structure.has(pair.named)],
         unexplained_significant=bool(significant), unexplained_where=where, drift=run.drift,
         settings=settings.to_dict(),
         final_model={key: value for key, value in written.to_dict().items() if key != "report"},

@@ -149,17 +149,20 @@ class Diagnosis:
             lines.append("no catalogue effect improves the model significantly")
         significance = self.settings["significance"]
         for pair in self.stand_ins:
-            gain = pair["gain"]
+            gain = round(pair["gain"], 2) + 0.0  # not "-0.00"
             told = (
                 "this log does not tell the two apart"
-                if abs(gain) <= significance
-                else f"`{pair['named']}` explains the log better"
+                if abs(pair["gain"]) <= significance
+                else "it does worse in its place"
                 if gain < 0
-                else "but not evenly over the record"
+                else "it gains more, but not one-sidedly over the record"
             )
             lines.append(f"`{pair['stand_in']}` in place of `{pair['named']}`: gains {gain:.2f} units of "
                          f"max(σ², floor²), an effect counts above {significance:g}: {told}")  # fmt: skip
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
+        if self.gross_errors and not self.unexplained_significant:
+            # The final rms counts them in full, and can stand far above the noise.
+            verdict += f", the {self.gross_errors} gross errors aside"
         ratio = self.rms_after / max(self.noise_std, 1e-300)
         lines.append(f"final model: rms {self.rms_after:.3g} {N} ({ratio:.2f}x "
                      f"the noise); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip

@@ -127,7 +127,9 @@ class Step:
 class StandIn:
     """The stand-in of a named effect fitted in its place (:func:`_exchange`), and what that
     gains over the final model in units (negative: it does worse). Within ``significance`` units
-    either way, the log does not tell the two apart."""
+    either way, the log does not tell the two apart. Where the two were exchanged, the one
+    replaced against the converged fit of the other (the progress line's gain is the other's
+    screened fit against the one replaced)."""
 
     named: str
     stand_in: str
