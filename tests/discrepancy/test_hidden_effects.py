@@ -91,6 +91,10 @@ def test_the_verdict_on_what_remains_sets_the_gross_errors_aside() -> None:
     assert "what remains is no more than noise and the floor: " in last
     gross = dataclasses.replace(diagnosis, gross_errors=1324).story().splitlines()[-1]
     assert "what remains is no more than noise and the floor, the 1324 gross errors aside: " in gross
+    assert "1324 samples (" in dataclasses.replace(diagnosis, gross_errors=1324).story()
+    one = dataclasses.replace(diagnosis, gross_errors=1).story()
+    assert "what remains is no more than noise and the floor, 1 gross error aside: " in one
+    assert "1 sample (" in one and ") is a gross error the model cannot explain" in one
     significant = dataclasses.replace(diagnosis, gross_errors=1324, unexplained_significant=True)
     assert "what remains is significant: " in significant.story().splitlines()[-1]
 
@@ -156,6 +160,8 @@ def test_the_report_follows_the_documented_layout() -> None:
     assert step["robust_after"] < step["robust_before"]
     assert step["rms_after"] < step["rms_before"]
     assert step["params"]["inertia"] == pytest.approx(0.05, rel=0.1)  # the generator's mass
+    # The last step's numbers are the file's.
+    assert step["params"]["inertia"] == identification.model.to_dict()["measurement"]["inertia"]
     assert set(report["unexplained"]) == {"significant", "where", "drift"}
     assert report["settings"] == lr.discrepancy.Settings().to_dict()
     # The final model is the file, as written.

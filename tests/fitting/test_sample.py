@@ -11,7 +11,7 @@ import leuven_rt as lr
 from leuven_rt.data.reconstruction import noisy_position
 from leuven_rt.data.synthetic import make_data
 from leuven_rt.discrepancy.hidden import make_hidden
-from leuven_rt.fitting import Settings
+from leuven_rt.fitting import Settings, select
 from leuven_rt.fitting.evaluate import evaluate
 from leuven_rt.fitting.sample import LONGEST_LEAD, MIN_LEAD, SEGMENTS, segments
 from leuven_rt.fitting.select import FIT_ROWS, prepare, rounds_reconstruction
@@ -89,3 +89,31 @@ def test_a_long_record_is_named_on_the_sample_and_its_file_fitted_whole() -> Non
     assert set(result.diagnosis.named_effects) == {"stribeck", "presliding_hysteresis"}
     assert lr.predict(result.model, log.data).rms <= 1.2 * log.noise_std
     assert result.diagnosis.rms_after == pytest.approx(lr.predict(result.model, log.data).rms, rel=1e-12)
+
+
+def test_the_written_files_ripple_period_is_found_again_on_the_whole_record() -> None:
+    """A period read on a sample that covers part of the stroke can be off: the written file's
+    is searched again on the whole record (docs/effects.md#long-records)."""
+    dt, period = 1e-3, 0.0125
+    t = np.arange(20_000) * dt
+    x = 0.05 * (1.0 - np.cos(2 * np.pi * 0.25 * t))  # sweeps the 0.1 stroke, 8 periods over it
+    v = np.diff(x, prepend=x[0]) / dt
+    friction = lr.Params(Fc=1.0, Fs=1.0, Vs=0.01, delta=2.0, n=2.0, sigma2=2.0, W=[1.02], Delta=[1e-9])
+    ripple = 0.1 * np.sin(2 * np.pi * x / period)
+    noise = 0.01 * np.random.default_rng(0).standard_normal(t.size)
+    data = lr.MotionData(t, x, lr.simulate(friction, v, dt) + ripple + noise, v=v)
+    target, scales = whole_target(data)
+    quiet: list[str] = []
+    base = Structure(frozenset({"coulomb", "viscous"}))
+    off = base.with_effect("position_dependence", form="force", periods=(0.8 * period,))
+    written = select.fit(off, scales, target, {"Fc": 1.0, "sigma2": 1.0})
+    found = select._period_on_whole(written, target, scales, quiet.append)
+    (again,) = found.structure.periods
+    assert again == pytest.approx(period, rel=1e-3)
+    assert select.full_mse(found, target) < 0.5 * select.full_mse(written, target)
+    assert len(quiet) == 1 and quiet[0].startswith("the ripple's period found anew on the whole record")
+    # Within the search's refinement of the period the file holds, the file stays as it is.
+    assert select._period_on_whole(found, target, scales, quiet.append) is found
+    plain = select.fit(base, scales, target, {"Fc": 1.0, "sigma2": 1.0})
+    assert select._period_on_whole(plain, target, scales, quiet.append) is plain
+    assert len(quiet) == 1

@@ -133,11 +133,16 @@ def _identification(
     residuals = [record.f - step.before.force for step in run.steps[:1]] or [record.f - run.baseline.force]
     residuals += [record.f - step.after.force for step in run.steps]
     residuals[-1] = record.f - prediction.f_model
+    # The last step's numbers are the file's, as its rms is (the file is refitted after the
+    # rounds, on the whole record and the reconstruction it is driven by).
+    shown = [step.after for step in run.steps]
+    if shown and final.structure.has(run.steps[-1].effect):
+        shown[-1] = final
     steps = [
         Step(step.effect, layout.where_improved(before, after, force), _rms(before), _rms(after),
-             _params(step.effect, step.after, written), math.sqrt(run.target.mse(step.before.force)),
+             _params(step.effect, model), math.sqrt(run.target.mse(step.before.force)),
              math.sqrt(run.target.mse(step.after.force)))
-        for step, before, after in zip(run.steps, residuals[:-1], residuals[1:], strict=True)
+        for step, model, before, after in zip(run.steps, shown, residuals[:-1], residuals[1:], strict=True)
     ]  # fmt: skip
     travel = travel_since_reversal(motion.x, motion.v)
     table = functions(motion.v, motion.x, motion.a, travel, usable)
@@ -179,8 +184,9 @@ def _described(reconstruction: Reconstruction) -> dict[str, Any]:
     return {**reconstruction.to_dict(), "description": describe(reconstruction)}
 
 
-def _params(effect: str, fitted: Fitted, written: ModelFile) -> dict[str, Any]:
-    """The numbers of the file that ``effect`` brought, as the step's model has them."""
+def _params(effect: str, fitted: Fitted) -> dict[str, Any]:
+    """The numbers of the file that ``effect`` brought, as ``fitted`` (the step's model, or the
+    file's) has them."""
     values = fitted.evaluation.values
     friction = values.friction
     if effect == "coulomb":

@@ -127,9 +127,10 @@ class Diagnosis:
             ),
             *(
                 [
-                    f"{self.gross_errors} samples ({self.gross_errors / self.samples:.1%}) are gross errors "
-                    "the model cannot explain (beyond 5 times the noise); choosing the effects counts them "
-                    "little, the written file is fitted on every sample"
+                    f"{_counted(self.gross_errors, 'sample')} ({self.gross_errors / self.samples:.1%}) "
+                    f"{'is a gross error' if self.gross_errors == 1 else 'are gross errors'} the model "
+                    "cannot explain (beyond 5 times the noise); choosing the effects counts them little, "
+                    "the written file is fitted on every sample"
                 ]
                 if self.gross_errors
                 else []
@@ -162,11 +163,16 @@ class Diagnosis:
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"
         if self.gross_errors and not self.unexplained_significant:
             # The final rms counts them in full, and can stand far above the noise.
-            verdict += f", the {self.gross_errors} gross errors aside"
+            the = "the " if self.gross_errors > 1 else ""
+            verdict += f", {the}{_counted(self.gross_errors, 'gross error')} aside"
         ratio = self.rms_after / max(self.noise_std, 1e-300)
         lines.append(f"final model: rms {self.rms_after:.3g} {N} ({ratio:.2f}x "
                      f"the noise); what remains is {verdict}: {self.unexplained_where}")  # fmt: skip
         return "\n".join(lines)
+
+
+def _counted(count: int, noun: str) -> str:
+    return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
 def _show(value: Any) -> str:
