@@ -4,6 +4,9 @@ forces on them are those of a simulation of the whole record."""
 
 from __future__ import annotations
 
+import dataclasses
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -91,25 +94,36 @@ def test_a_long_record_is_named_on_the_sample_and_its_file_fitted_whole() -> Non
     assert result.diagnosis.rms_after == pytest.approx(lr.predict(result.model, log.data).rms, rel=1e-12)
 
 
-def test_the_written_files_ripple_period_is_found_again_on_the_whole_record() -> None:
-    """A period read on a sample that covers part of the stroke can be off: the written file's
-    is searched again on the whole record (docs/effects.md#long-records)."""
-    dt, period = 1e-3, 0.0125
+PERIOD = 0.0125
+
+
+def ripple_log(form: str) -> lr.MotionData:
+    """A slide over a 0.1 stroke (8 periods of :data:`PERIOD`) with its velocity logged: a force
+    that repeats with the position, or a friction level that does."""
+    dt = 1e-3
     t = np.arange(20_000) * dt
-    x = 0.05 * (1.0 - np.cos(2 * np.pi * 0.25 * t))  # sweeps the 0.1 stroke, 8 periods over it
+    x = 0.05 * (1.0 - np.cos(2 * np.pi * 0.25 * t))
     v = np.diff(x, prepend=x[0]) / dt
     friction = lr.Params(Fc=1.0, Fs=1.0, Vs=0.01, delta=2.0, n=2.0, sigma2=2.0, W=[1.02], Delta=[1e-9])
-    ripple = 0.1 * np.sin(2 * np.pi * x / period)
+    ripple = 0.1 * np.sin(2 * np.pi * x / PERIOD)
+    force = lr.simulate(friction, v, dt)
+    force = force + ripple if form == "force" else force * (1.0 + ripple)
     noise = 0.01 * np.random.default_rng(0).standard_normal(t.size)
-    data = lr.MotionData(t, x, lr.simulate(friction, v, dt) + ripple + noise, v=v)
-    target, scales = whole_target(data)
+    return lr.MotionData(t, x, force + noise, v=v)
+
+
+@pytest.mark.parametrize("form", ["force", "level"])
+def test_the_written_files_ripple_period_is_found_again_on_the_whole_record(form: str) -> None:
+    """A period read on a sample that covers part of the stroke can be off: the written file's
+    is searched again on the whole record (docs/effects.md#long-records)."""
+    target, scales = whole_target(ripple_log(form))
     quiet: list[str] = []
     base = Structure(frozenset({"coulomb", "viscous"}))
-    off = base.with_effect("position_dependence", form="force", periods=(0.8 * period,))
+    off = base.with_effect("position_dependence", form=form, periods=(0.8 * PERIOD,))
     written = select.fit(off, scales, target, {"Fc": 1.0, "sigma2": 1.0})
     found = select._period_on_whole(written, target, scales, quiet.append)
     (again,) = found.structure.periods
-    assert again == pytest.approx(period, rel=1e-3)
+    assert again == pytest.approx(PERIOD, rel=1e-3)
     assert select.full_mse(found, target) < 0.5 * select.full_mse(written, target)
     assert len(quiet) == 1 and quiet[0].startswith("the ripple's period found anew on the whole record")
     # Within the search's refinement of the period the file holds, the file stays as it is.
@@ -117,3 +131,33 @@ def test_the_written_files_ripple_period_is_found_again_on_the_whole_record() ->
     plain = select.fit(base, scales, target, {"Fc": 1.0, "sigma2": 1.0})
     assert select._period_on_whole(plain, target, scales, quiet.append) is plain
     assert len(quiet) == 1
+
+
+def test_a_sampled_record_gives_the_file_and_the_report_the_period_found_on_the_whole(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Where the period changes on the whole record, the file holds it, the rounds' model that
+    what remains is judged on is refitted with it, and the report's step gives it."""
+    calls: list[tuple[float, ...]] = []
+    search = select._period_on_whole
+
+    def off_first(written: Any, target: Target, scales: Scales, say: Any) -> Any:
+        # As if the sample had read the period 20 % short.
+        calls.append(written.structure.periods)
+        (period,) = written.structure.periods
+        start = select.fit(dataclasses.replace(written.structure, periods=(0.8 * period,)), scales, target,
+                           written.theta)  # fmt: skip
+        return search(start, target, scales, say)
+
+    monkeypatch.setattr(select, "_period_on_whole", off_first)
+    record = ripple_log("force")
+    run = select.select(record, ("coulomb", "viscous"), Settings(rounds_samples=4096))
+    assert len(calls) == 1
+    (period,) = run.written.structure.periods
+    assert period == pytest.approx(PERIOD, rel=1e-3)
+    assert run.without_drift.structure == run.written.structure
+    assert run.final.structure.periods == (period,)
+    found = lr.identify(record, settings=Settings(rounds_samples=4096))
+    [step] = found.diagnosis.to_dict()["steps"]
+    [ripple] = found.model.to_dict()["position_force"]["ripples"]
+    assert step["params"]["periods"] == [ripple["period"]] and len(calls) == 2

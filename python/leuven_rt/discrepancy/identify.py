@@ -133,11 +133,9 @@ def _identification(
     residuals = [record.f - step.before.force for step in run.steps[:1]] or [record.f - run.baseline.force]
     residuals += [record.f - step.after.force for step in run.steps]
     residuals[-1] = record.f - prediction.f_model
-    # The last step's numbers are the file's, as its rms is (the file is refitted after the
-    # rounds, on the whole record and the reconstruction it is driven by).
-    shown = [step.after for step in run.steps]
-    if shown and final.structure.has(run.steps[-1].effect):
-        shown[-1] = final
+    # Each step's numbers are the file's (refitted after the rounds, on the whole record and the
+    # reconstruction it is driven by), where the file still holds the effect.
+    shown = [final if final.structure.has(step.effect) else step.after for step in run.steps]
     steps = [
         Step(step.effect, layout.where_improved(before, after, force), _rms(before), _rms(after),
              _params(step.effect, model), math.sqrt(run.target.mse(step.before.force)),

@@ -341,8 +341,9 @@ def _period_on_whole(written: Fitted, target: Target, scales: Scales, say: Progr
     The rounds find the period on a sample of a long record, whose segments may cover only part
     of the stroke: the family's held_09 of seed base 11000 (a level ripple of period 27.0 mrad,
     5.6 periods over the stroke, 146 739 samples) was sampled over 49 % of it, where the period
-    read 22.1 mrad, and the file stopped at 1.62 times the noise; on the whole record the same
-    search reads 27.4."""
+    read 22.1 mrad, and the file stopped at 1.62 times the noise; in what the written file leaves
+    on the whole record the same search reads 27.0, and the file predicts at 1.05 times. A
+    period the rounds did not find is not searched for here."""
     structure = written.structure
     if not structure.has("position_dependence") or len(structure.periods) != 1:
         return written
