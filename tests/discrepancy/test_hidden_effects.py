@@ -16,6 +16,7 @@ import pytest
 import leuven_rt as lr
 from leuven_rt.discrepancy import CATALOGUE
 from leuven_rt.discrepancy.hidden import make_hidden
+from leuven_rt.discrepancy.report import Diagnosis
 from leuven_rt.fitting.select import Selection, StandIn
 
 BASE = ("coulomb", "viscous")
@@ -43,11 +44,22 @@ def test_hidden_effects_are_named_exactly(truth: tuple[str, ...], with_velocity:
         assert lr.predict(identification.model, hidden.data).rms <= 1.2 * hidden.noise_std, diagnosis.story()
 
 
-def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apart() -> None:
+def offset_log() -> lr.MotionData:
+    return make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data
+
+
+@pytest.fixture(scope="module")
+def offset_named() -> Diagnosis:
+    return lr.identify(offset_log(), BASE).diagnosis
+
+
+def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apart(
+    offset_named: Diagnosis,
+) -> None:
     """An offset smaller than both levels is held as well by levels of their own for −x: the
     report gives what the asymmetry gains in the offset's place, and the story says the log does
     not tell the two apart."""
-    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+    diagnosis = offset_named
     assert diagnosis.named_effects == ["offset"]
     [pair] = json.loads(diagnosis.to_json())["stand_ins"]
     assert set(pair) == {"named", "stand_in", "gain"}
@@ -80,12 +92,12 @@ def test_no_stand_in_is_reported_for_an_effect_the_file_lacks(
         return dataclasses.replace(run, stand_ins=[*run.stand_ins, StandIn("asymmetry", "offset", 0.0)])
 
     monkeypatch.setattr(identify_module, "select", with_a_stray_pair)
-    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+    diagnosis = lr.identify(offset_log(), BASE).diagnosis
     assert [pair["named"] for pair in diagnosis.stand_ins] == ["offset"]
 
 
-def test_the_verdict_on_what_remains_sets_the_gross_errors_aside() -> None:
-    diagnosis = lr.identify(make_hidden((*BASE, "offset"), dt=DT, with_velocity=True).data, BASE).diagnosis
+def test_the_verdict_on_what_remains_sets_the_gross_errors_aside(offset_named: Diagnosis) -> None:
+    diagnosis = offset_named
     assert diagnosis.gross_errors == 0 and not diagnosis.unexplained_significant
     last = diagnosis.story().splitlines()[-1]
     assert "what remains is no more than noise and the floor: " in last
@@ -160,7 +172,7 @@ def test_the_report_follows_the_documented_layout() -> None:
     assert step["robust_after"] < step["robust_before"]
     assert step["rms_after"] < step["rms_before"]
     assert step["params"]["inertia"] == pytest.approx(0.05, rel=0.1)  # the generator's mass
-    # The last step's numbers are the file's.
+    # The step's numbers are the file's.
     assert step["params"]["inertia"] == identification.model.to_dict()["measurement"]["inertia"]
     assert set(report["unexplained"]) == {"significant", "where", "drift"}
     assert report["settings"] == lr.discrepancy.Settings().to_dict()

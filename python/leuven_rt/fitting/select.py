@@ -657,11 +657,8 @@ def _reduced(final: Fitted, effect: str, scales: Scales, target: Target) -> tupl
     reduced = fit(structure, scales, target, _held(final, structure, scales), SCREEN)
     if effect != "offset" or not structure.has("asymmetry"):
         return reduced, None
-    start = _offset_in_levels(final.theta)
-    if start is None:
-        return reduced, None
-    moved = fit(structure, scales, target, start, SCREEN)
-    return reduced, moved if moved.mse < reduced.mse else None
+    moved = _moved(structure, scales, target, final.theta)
+    return reduced, moved if moved is not None and moved.mse < reduced.mse else None
 
 
 def _form(structure: Structure) -> str:
@@ -715,11 +712,8 @@ def _in_place(final: Fitted, named: str, other: str, scales: Scales, target: Tar
     the offset, and so started, 0.001 units better."""
     structure = final.structure.without(named).with_effect(other)
     swapped = fit(structure, scales, target, _held(final, structure, scales), SCREEN)
-    start = _offset_in_levels(final.theta) if named == "offset" else None
-    if start is None:
-        return swapped
-    moved = fit(structure, scales, target, start, SCREEN)
-    return moved if moved.mse < swapped.mse else swapped
+    moved = _moved(structure, scales, target, final.theta) if named == "offset" else None
+    return moved if moved is not None and moved.mse < swapped.mse else swapped
 
 
 def _drifting(
@@ -871,12 +865,18 @@ def _shifted(
         offset = added.get(new - {"asymmetry"} | {"offset"})
         if offset is None or not current.mse - offset.mse > counts or offset.mse >= candidate.mse:
             continue
-        start = _offset_in_levels(offset.theta)
-        if start is not None:
-            moved = fit(candidate.structure, scales, target, start, SCREEN)
-            if moved.mse < candidate.mse:
-                out[place] = moved
+        moved = _moved(candidate.structure, scales, target, offset.theta)
+        if moved is not None and moved.mse < candidate.mse:
+            out[place] = moved
     return out
+
+
+def _moved(structure: Structure, scales: Scales, target: Target, theta: dict[str, float]) -> Fitted | None:
+    """``structure`` (an asymmetry, no offset) screened from ``theta`` (a model with an offset)
+    with the offset moved into the two directions' levels (:func:`_offset_in_levels`); None
+    where a level would not stay positive."""
+    start = _offset_in_levels(theta)
+    return None if start is None else fit(structure, scales, target, start, SCREEN)
 
 
 def _offset_in_levels(theta: dict[str, float]) -> dict[str, float] | None:
