@@ -1,7 +1,8 @@
 """A family of generated friction logs that vary what real logs vary, in two splits: `tuning`, to
 tune the workflow on, and `held-out`, to report apart and never to tune on.
 
-    python benches/family.py OUT [--split tuning|held-out|all] [--seed-base N] [--quick] [--force]
+    python benches/family.py OUT [--split tuning|held-out|all] [--seed-base N] [--law leuven|lugre]
+                             [--quick] [--force]
 
 writes ``OUT/<name>.csv`` (columns ``t,x,f`` and, in half of the logs, ``v``; SI units) and
 ``OUT/manifest.json``: per log ``name``, ``split``, ``hidden_effects``, ``extra`` (``"drift"``
@@ -34,6 +35,16 @@ encoder step. The hidden effects (docs/effects.md):
   0.15–0.6 Fc in the position-driven logs);
 - null cases (Coulomb + viscous only) and drift cases (``extra: "drift"``: the contact level
   rises by 20–35 % over the record, outside the catalogue).
+
+**Another law** (``--law lugre``): the contact part is the LuGre model instead (a linear bristle
+σ0 in place of the Maxwell-slip elements, n = 1, and a micro-damping σ1 = 0.5–2 σ2), which
+the catalogue's bank only approximates: its presliding curve is exponential, never a staircase
+of breaking elements, and σ1 damps it. Where presliding is hidden, σ0 = 3·Fs/range (95 % of
+the level reached over the experimenter's presliding range); otherwise σ0 = Fs/``STIFF_DELTA``
+(the friction flips far below an encoder step, and σ1 has nothing to damp). Everything else
+(recipe, sensors, excitation, noise, the other true values) is drawn as for ``leuven`` from the
+same seed: the two laws' logs of one seed base are pairs. Report the LuGre logs apart: the
+workflow was never tuned on them.
 
 **What each split varies.** The held-out split has seeds of its own AND generator paths the
 tuning split never uses (marked *only held-out*):
@@ -103,6 +114,10 @@ FLOOR_CUTOFFS = (0.2, 0.1, 0.05)
 #: A case's seed is 2·(100·seed_base + index) + this: the splits never share a seed.
 SPLIT_PARITY = {"tuning": 0, "held-out": 1}
 SPLITS = ("tuning", "held-out")
+#: The contact laws of the truth (module documentation, "Another law").
+LAWS = ("leuven", "lugre")
+#: A LuGre bristle reaches 1 − e⁻³ (95 %) of its level over this many Fs/σ0.
+LUGRE_REACH = 3.0
 #: The prefix of each split's log names.
 PREFIX = {"tuning": "tune", "held-out": "held"}
 LINEAR_ENCODERS = (1e-9, 2e-9, 5e-9, 1e-8, 2e-8, 5e-8, 1e-7, 2e-7, 5e-7, 1e-6)  # m per count
@@ -298,13 +313,16 @@ def _loguniform(rng: np.random.Generator, bounds: tuple[float, float]) -> float:
 # --------------------------------------------------------------------------------------------
 
 
-def draw_case(split: str, index: int, seed_base: int = 0, quick: bool = False) -> Case:
+def draw_case(split: str, index: int, seed_base: int = 0, quick: bool = False, law: str = "leuven") -> Case:
     """The ``index``-th log of ``split``: sensors, excitation and truth drawn from its seed.
     The sensors' share (velocity column, rotary axis, noise model, dwell) follows the index,
-    shifted by ``seed_base``, so that every part of a split holds each kind."""
+    shifted by ``seed_base``, so that every part of a split holds each kind. ``law``: the
+    contact law of the truth (:data:`LAWS`)."""
     recipes = RECIPES[split]
     if seed_base < 0:
         raise ValueError(f"`seed_base` must be >= 0, got {seed_base}")
+    if law not in LAWS:
+        raise ValueError(f"`law` must be one of {list(LAWS)}, got {law!r}")
     if not 0 <= index < len(recipes):  # at most 100: the seeds below stay apart
         raise ValueError(f"`index` must be in [0, {len(recipes)}) for the {split} split, got {index}")
     recipe = recipes[index]
@@ -326,6 +344,9 @@ def draw_case(split: str, index: int, seed_base: int = 0, quick: bool = False) -
     duration = rng.uniform(8.0, 12.0) if quick else rng.uniform(10.0, 30.0)
     truth = _draw_truth(recipe, axis, q, rng)
     noise_std = rng.uniform(0.005, 0.03) * truth["Fc"]
+    if law == "lugre":
+        # From a stream of its own: the draws above stay those of the Leuven law's log.
+        truth = _lugre(truth, PS in recipe.hidden, np.random.default_rng([seed, 2]))
     return Case(
         name=f"{PREFIX[split]}_{index + 1:02d}",
         split=split,
@@ -375,6 +396,7 @@ def _draw_truth(recipe: Recipe, axis: Axis, q: float, rng: np.random.Generator) 
         weights = np.array([rng.uniform(1.05, 1.3) * top])
         n = 2.0
     truth: dict[str, Any] = {
+        "law": "leuven",
         "Fc": fc,
         "Fs": fs,
         "Fc_neg": fc * ratio,
@@ -440,6 +462,29 @@ def _draw_truth(recipe: Recipe, axis: Axis, q: float, rng: np.random.Generator) 
             "relative_rise": rng.uniform(0.2, 0.35),
         }
     return truth
+
+
+def _lugre(truth: dict[str, Any], presliding: bool, rng: np.random.Generator) -> dict[str, Any]:
+    """``truth`` with its contact part made the LuGre model (module documentation)."""
+    top = max(truth["Fs"], truth["Fs_neg"])
+    reach = truth["excitation_presliding_range"] if presliding else STIFF_DELTA
+    sigma0 = LUGRE_REACH * top / reach if presliding else top / STIFF_DELTA
+    return {
+        **truth,
+        "law": "lugre",
+        "n": 1.0,
+        "sigma0": sigma0,
+        "sigma1": rng.uniform(0.5, 2.0) * truth["sigma2"],
+        "N": 0,
+        "grid": (
+            "LuGre: a linear bristle, 95 % of the level over the presliding range"
+            if presliding
+            else "LuGre: a linear bristle, the friction flips far below the encoder step"
+        ),
+        "W": None,
+        "Delta": None,
+        "presliding_range": LUGRE_REACH * top / sigma0 if presliding else STIFF_DELTA,
+    }
 
 
 # --------------------------------------------------------------------------------------------
@@ -630,8 +675,21 @@ def _closed_loop_reference(case: Case, rng: np.random.Generator) -> Profile:
 
 
 def contact_params(truth: dict[str, Any]) -> lr.Params:
-    """The Leuven model's contact part (σ1 = σ2 = 0): the viscous term is added apart, because
-    its −x level may differ (asymmetry) and the level does not scale it."""
+    """The contact part (σ2 = 0; σ1 = 0 but for LuGre's): the viscous term is added apart,
+    because its −x level may differ (asymmetry) and the level does not scale it."""
+    if truth.get("law") == "lugre":
+        return lr.Params(
+            Fc=truth["Fc"],
+            Fs=truth["Fs"],
+            Fc_neg=truth["Fc_neg"],
+            Fs_neg=truth["Fs_neg"],
+            Vs=truth["Vs"],
+            delta=truth["delta"],
+            n=1.0,
+            sigma0=truth["sigma0"],
+            sigma1=truth["sigma1"],
+            sigma2=0.0,
+        )
     return lr.Params(
         Fc=truth["Fc"],
         Fs=truth["Fs"],
@@ -920,8 +978,9 @@ def describe(case: Case) -> str:
     dwell = "0-0.1 s dwell at reversals" if case.dwell[1] > 0 else "no dwell"
     if recipe.excitation in CLOSED_LOOP:
         dwell = "closed loop"
+    law = "LuGre law, " if case.truth.get("law") == "lugre" else ""
     return (
-        f"{case.axis.kind}, {hidden}, {recipe.excitation}, {case.rate:g} Hz, {encoder}, "
+        f"{law}{case.axis.kind}, {hidden}, {recipe.excitation}, {case.rate:g} Hz, {encoder}, "
         f"{case.noise_kind} noise, {'with' if case.has_v else 'no'} v, {dwell}"
     )
 
@@ -975,12 +1034,12 @@ def write_csv(path: Path, log: Log) -> None:
     np.savetxt(path, np.column_stack(columns), fmt=fmt, delimiter=",", header=header, comments="")
 
 
-def cases(split: str, seed_base: int = 0, quick: bool = False) -> list[Case]:
-    """The cases of ``split`` ("tuning", "held-out" or "all")."""
+def cases(split: str, seed_base: int = 0, quick: bool = False, law: str = "leuven") -> list[Case]:
+    """The cases of ``split`` ("tuning", "held-out" or "all") under the contact ``law``."""
     chosen = SPLITS if split == "all" else (split,)
     count = 4 if quick else None
     return [
-        draw_case(name, index, seed_base, quick)
+        draw_case(name, index, seed_base, quick, law)
         for name in chosen
         for index in range(len(RECIPES[name]))[:count]
     ]
@@ -992,11 +1051,13 @@ def generate(
     seed_base: int = 0,
     quick: bool = False,
     progress: Callable[[str], None] | None = None,
+    law: str = "leuven",
 ) -> list[dict[str, Any]]:
-    """Writes every log of ``split`` and the manifest into ``out``; returns the manifest."""
+    """Writes every log of ``split`` under the contact ``law`` and the manifest into ``out``;
+    returns the manifest."""
     out.mkdir(parents=True, exist_ok=True)
     manifest = []
-    for case in cases(split, seed_base, quick):
+    for case in cases(split, seed_base, quick, law):
         start = time.perf_counter()
         log = make_log(case)
         write_csv(out / f"{case.name}.csv", log)
@@ -1025,6 +1086,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--seed-base", type=_seed_base, default=0, help="shifts every seed (another family of the same kind)"
     )
+    parser.add_argument(
+        "--law",
+        choices=LAWS,
+        default="leuven",
+        help="the truth's contact law (lugre: another law than the bank's)",
+    )
     parser.add_argument("--quick", action="store_true", help="4 logs a split, 8-12 s each")
     parser.add_argument("--force", action="store_true", help="replace an existing manifest.json in OUT")
     args = parser.parse_args(argv)
@@ -1038,6 +1105,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args.seed_base,
         args.quick,
         lambda line: print(line, file=sys.stderr, flush=True),
+        args.law,
     )
     print(f"{len(manifest)} logs and manifest.json in {args.out} ({time.perf_counter() - start:.1f} s)")
     return 0

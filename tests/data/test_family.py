@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
+import math
 import sys
 from pathlib import Path
 from types import ModuleType
@@ -19,7 +20,7 @@ import numpy as np
 import pytest
 
 from conftest import family as load_family
-from leuven_rt import simulate
+from leuven_rt import simulate, simulate_position
 from leuven_rt.data import as_motion_data
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -108,18 +109,25 @@ def test_the_scorer_judges_the_manifest(quick_tuning: tuple[Path, list[dict[str,
 
 
 @pytest.mark.parametrize(
-    ("split", "index", "seed_base"),
-    [("tuning", 1, 1), ("tuning", 2, 0), ("tuning", 7, 1), ("held-out", 11, 1)],
+    ("split", "index", "seed_base", "law"),
+    [
+        ("tuning", 1, 1, "leuven"),
+        ("tuning", 2, 0, "leuven"),
+        ("tuning", 7, 1, "leuven"),
+        ("held-out", 11, 1, "leuven"),
+        ("tuning", 2, 0, "lugre"),
+        ("held-out", 11, 1, "lugre"),
+    ],
 )
 def test_the_true_velocity_drives_the_true_law_to_the_clean_force(
-    split: str, index: int, seed_base: int
+    split: str, index: int, seed_base: int, law: str
 ) -> None:
     """Null, asymmetry and offset logs with ``v``: the true law with its measurement terms,
     driven by the logged ``v``, gives the force before noise on every sample but those in which
     the motion starts or reverses and the next few. There the truth is between its levels (it
     flips over 1e-10 of travel) while a law driven at the log's rate flips whole, or nearly: the
     floor's excess over the noise."""
-    case = family.draw_case(split, index, seed_base, quick=True)
+    case = family.draw_case(split, index, seed_base, quick=True, law=law)
     assert (
         case.has_v
         and case.recipe.excitation not in family.CLOSED_LOOP
@@ -142,23 +150,28 @@ def test_the_true_velocity_drives_the_true_law_to_the_clean_force(
 
 
 @pytest.mark.parametrize(
-    ("split", "index"),
+    ("split", "index", "law"),
     [
-        ("tuning", 3),
-        ("tuning", 8),
-        ("tuning", 9),
-        ("tuning", 12),
-        ("tuning", 15),
-        ("tuning", 22),
-        ("held-out", 0),
+        ("tuning", 3, "leuven"),
+        ("tuning", 8, "leuven"),
+        ("tuning", 9, "leuven"),
+        ("tuning", 12, "leuven"),
+        ("tuning", 15, "leuven"),
+        ("tuning", 22, "leuven"),
+        ("held-out", 0, "leuven"),
+        ("held-out", 0, "lugre"),
+        ("held-out", 4, "lugre"),
     ],
 )
-def test_where_the_law_driven_by_v_is_the_clean_force_the_floor_is_the_noise(split: str, index: int) -> None:
+def test_where_the_law_driven_by_v_is_the_clean_force_the_floor_is_the_noise(
+    split: str, index: int, law: str
+) -> None:
     """The floor's terms, one case each: the ripple, the trend, the drift, cogging, the −x
-    levels with inertia, offset with inertia and Stribeck, and the closed loop. Each log is given
-    the true velocity, and its force is made the true law driven by it plus the log's noise:
-    the floor is then the noise, and it comes from the logged ``v``."""
-    case = dataclasses.replace(family.draw_case(split, index, quick=True), has_v=True)
+    levels with inertia, offset with inertia and Stribeck, the closed loop, and the LuGre law
+    (closed loop; presliding with Stribeck). Each log is given the true velocity, and its force
+    is made the true law driven by it plus the log's noise: the floor is then the noise, and it
+    comes from the logged ``v``."""
+    case = dataclasses.replace(family.draw_case(split, index, quick=True, law=law), has_v=True)
     log = family.make_log(case)
     truth, v = log.case.truth, log.v
     assert v is not None
@@ -174,6 +187,52 @@ def test_where_the_law_driven_by_v_is_the_clean_force_the_floor_is_the_noise(spl
     assert source.startswith("logged v")
     # The physical log's floor is at least that: no drive explains the noise.
     assert log.floor_rms >= 0.99 * float(np.std(log.noise))
+
+
+@pytest.mark.parametrize(
+    ("split", "index"), [("held-out", 4), ("held-out", 0), ("tuning", 1), ("tuning", 20)]
+)
+def test_a_lugre_log_is_its_leuven_pair_with_another_contact_law(split: str, index: int) -> None:
+    """``--law lugre`` changes the contact part alone: the case (recipe, sensors, excitation,
+    noise) and every true value outside the contact part are the Leuven log's of the same seed,
+    and so is the motion of a position-driven log."""
+    leuven = family.draw_case(split, index, seed_base=3, quick=True)
+    lugre = family.draw_case(split, index, seed_base=3, quick=True, law="lugre")
+    assert dataclasses.replace(lugre, truth=leuven.truth) == leuven
+    keys = leuven.truth.keys() | lugre.truth.keys()
+    changed = {key for key in keys if leuven.truth.get(key) != lugre.truth.get(key)}
+    assert changed <= {"law", "n", "sigma0", "sigma1", "N", "grid", "W", "Delta", "presliding_range"}
+    assert lugre.truth["law"] == "lugre" and leuven.truth["law"] == "leuven"
+    params = family.contact_params(lugre.truth)
+    assert params.W is None and params.n == 1.0 and params.sigma2 == 0.0
+    assert params.sigma0 is not None and params.sigma0 > 0.0 and params.sigma1 > 0.0
+    assert family.describe(lugre).startswith("LuGre law, ")
+    if lugre.recipe.excitation not in family.CLOSED_LOOP:
+        first, second = family.make_log(leuven), family.make_log(lugre)
+        np.testing.assert_array_equal(first.x, second.x)
+        assert not np.array_equal(first.force_true, second.force_true)
+    with pytest.raises(ValueError, match="`law` must be one of \\['leuven', 'lugre'\\], got 'dahl'"):
+        family.draw_case(split, index, law="dahl")
+
+
+def test_a_lugre_bristle_reaches_95_percent_of_the_level_over_the_presliding_range() -> None:
+    """Where presliding is hidden, the LuGre law's force builds up from rest as
+    Fs·(1 − e^(−σ0·x/Fs)) at speeds far below Vs: 1 − e⁻³ of Fs at the experimenter's range.
+    Where it is not, one implicit step of a thousand ``STIFF_DELTA`` (still far below any
+    encoder step) takes it to 1000/1001 of its level."""
+    case = family.draw_case("held-out", 4, quick=True, law="lugre")
+    truth = case.truth
+    assert "presliding_hysteresis" in case.recipe.hidden and truth["Fs_neg"] == truth["Fs"]
+    reach = truth["excitation_presliding_range"]
+    x = np.linspace(0.0, 2.0 * reach, 20001)
+    force = simulate_position(family.contact_params(truth), x, 1.0)  # 1e-9 m/s or so: far below Vs
+    curve = truth["Fs"] * (1.0 - np.exp(-truth["sigma0"] * x / truth["Fs"]))
+    np.testing.assert_allclose(force, curve, atol=1e-3 * truth["Fs"])
+    assert force[10000] == pytest.approx((1.0 - math.exp(-3.0)) * truth["Fs"], rel=2e-3)
+    stiff = family.draw_case("held-out", 1, quick=True, law="lugre").truth
+    assert stiff["presliding_range"] == family.STIFF_DELTA
+    step = simulate_position(family.contact_params(stiff), np.array([0.0, 1e3 * family.STIFF_DELTA]), 1.0)
+    assert step[-1] == pytest.approx(stiff["Fs"] * 1e3 / (1e3 + 1.0), rel=1e-6)
 
 
 def test_a_null_case_hides_nothing() -> None:
