@@ -1,5 +1,6 @@
 """The drift beside an effect: a friction level that drifts over the record makes an effect's
-gain uneven in time, so that neither counts alone; fitted together they do."""
+gain uneven in time, so that neither counts alone; fitted together they do. And the drift in
+the place of a position dependence that stands in for it."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from scipy.signal import lfilter
 from threadpoolctl import threadpool_limits
 
 import leuven_rt as lr
+from conftest import family
 from leuven_rt.data.records import MotionData
 from leuven_rt.fitting import select
 from leuven_rt.fitting.settings import Settings
@@ -46,4 +48,18 @@ def test_a_drift_that_hides_an_asymmetry_is_found_beside_it() -> None:
         selection = select.select(drifting_asymmetry(), ("coulomb", "viscous"), Settings())
     assert selection.drift
     assert selection.final.structure.has("asymmetry")
+    assert not selection.written.structure.drift
+
+
+def test_a_drift_that_a_position_dependence_stands_in_for_is_found_in_its_place() -> None:
+    """The family's held_04 of seed base 12000 (the contact level rising by a quarter over the
+    record, Stribeck, reversal legs, no `v`): named first, a position dependence took the drift's
+    place and the drift gained too little beside it; in its place the drift gains more, so the
+    rounds run again with the drift alongside, and Stribeck is named alone."""
+    log = family().make_log(family().draw_case("held-out", 3, seed_base=12000))
+    assert log.case.recipe.extra == "drift" and log.v is None
+    with threadpool_limits(1):
+        selection = select.select(MotionData(log.t, log.x, log.f), ("coulomb", "viscous"), Settings())
+    assert selection.drift
+    assert selection.final.structure.effects == frozenset({"coulomb", "viscous", "stribeck"})
     assert not selection.written.structure.drift
