@@ -39,9 +39,10 @@ encoder step. The hidden effects (docs/effects.md):
 **Another law** (``--law lugre``): the contact part is the LuGre model instead (a linear bristle
 σ0 in place of the Maxwell-slip elements, n = 1, and a micro-damping σ1 = 0.5–2 σ2), which
 the catalogue's bank only approximates: its presliding curve is exponential, never a staircase
-of breaking elements, and σ1 damps it. Where presliding is hidden, σ0 = 3·Fs/range (95 % of
-the level reached over the experimenter's presliding range); otherwise σ0 = Fs/``STIFF_DELTA``
-(the friction flips far below an encoder step, and σ1 has nothing to damp). Everything else
+of breaking elements, and σ1 damps it. With F the larger static level, σ0 = 3·F/range where
+presliding is hidden (95 % of F reached over the experimenter's presliding range); otherwise
+σ0 = F/``STIFF_DELTA`` (95 % within 3·``STIFF_DELTA``: the friction flips far below an encoder
+step, and σ1 has nothing to damp). ``presliding_range`` is where 95 % is reached. Everything else
 (recipe, sensors, excitation, noise, the other true values) is drawn as for ``leuven`` from the
 same seed: the two laws' logs of one seed base are pairs. Report the LuGre logs apart: the
 workflow was never tuned on them.
@@ -467,8 +468,8 @@ def _draw_truth(recipe: Recipe, axis: Axis, q: float, rng: np.random.Generator) 
 def _lugre(truth: dict[str, Any], presliding: bool, rng: np.random.Generator) -> dict[str, Any]:
     """``truth`` with its contact part made the LuGre model (module documentation)."""
     top = max(truth["Fs"], truth["Fs_neg"])
-    reach = truth["excitation_presliding_range"] if presliding else STIFF_DELTA
-    sigma0 = LUGRE_REACH * top / reach if presliding else top / STIFF_DELTA
+    # The stiff bristle's σ0 holds the larger static level at STIFF_DELTA, as the stiff element does.
+    sigma0 = LUGRE_REACH * top / truth["excitation_presliding_range"] if presliding else top / STIFF_DELTA
     return {
         **truth,
         "law": "lugre",
@@ -477,13 +478,14 @@ def _lugre(truth: dict[str, Any], presliding: bool, rng: np.random.Generator) ->
         "sigma1": rng.uniform(0.5, 2.0) * truth["sigma2"],
         "N": 0,
         "grid": (
-            "LuGre: a linear bristle, 95 % of the level over the presliding range"
+            "LuGre: a linear bristle, 95 % of the larger static level over the presliding range"
             if presliding
             else "LuGre: a linear bristle, the friction flips far below the encoder step"
         ),
         "W": None,
         "Delta": None,
-        "presliding_range": LUGRE_REACH * top / sigma0 if presliding else STIFF_DELTA,
+        # Where 95 % of the larger static level is reached (1 - e^-3, over LUGRE_REACH·top/σ0).
+        "presliding_range": LUGRE_REACH * top / sigma0,
     }
 
 
@@ -677,32 +679,10 @@ def _closed_loop_reference(case: Case, rng: np.random.Generator) -> Profile:
 def contact_params(truth: dict[str, Any]) -> lr.Params:
     """The contact part (σ2 = 0; σ1 = 0 but for LuGre's): the viscous term is added apart,
     because its −x level may differ (asymmetry) and the level does not scale it."""
+    levels = {key: truth[key] for key in ("Fc", "Fs", "Fc_neg", "Fs_neg", "Vs", "delta", "n")}
     if truth.get("law") == "lugre":
-        return lr.Params(
-            Fc=truth["Fc"],
-            Fs=truth["Fs"],
-            Fc_neg=truth["Fc_neg"],
-            Fs_neg=truth["Fs_neg"],
-            Vs=truth["Vs"],
-            delta=truth["delta"],
-            n=1.0,
-            sigma0=truth["sigma0"],
-            sigma1=truth["sigma1"],
-            sigma2=0.0,
-        )
-    return lr.Params(
-        Fc=truth["Fc"],
-        Fs=truth["Fs"],
-        Fc_neg=truth["Fc_neg"],
-        Fs_neg=truth["Fs_neg"],
-        Vs=truth["Vs"],
-        delta=truth["delta"],
-        n=truth["n"],
-        sigma1=0.0,
-        sigma2=0.0,
-        W=truth["W"],
-        Delta=truth["Delta"],
-    )
+        return lr.Params(**levels, sigma0=truth["sigma0"], sigma1=truth["sigma1"], sigma2=0.0)
+    return lr.Params(**levels, sigma1=0.0, sigma2=0.0, W=truth["W"], Delta=truth["Delta"])
 
 
 def viscous(truth: dict[str, Any], v: Array) -> Array:

@@ -135,11 +135,11 @@ def test_the_true_velocity_drives_the_true_law_to_the_clean_force(
     )
     log = family.make_log(case)
     truth, v = log.case.truth, log.v
-    law = simulate(family.contact_params(truth), v, case.dt) + family.viscous(truth, v) + truth["offset"]
+    expected = simulate(family.contact_params(truth), v, case.dt) + family.viscous(truth, v) + truth["offset"]
     direction = np.sign(v)
     turns = np.concatenate(([False], direction[1:] != direction[:-1])) & (direction != 0)
     assert 10 <= np.count_nonzero(turns) <= 0.02 * v.size
-    error = np.abs(log.force_true - law)
+    error = np.abs(log.force_true - expected)
     # Beyond a micrometre of travel after each start or reversal (trapezoidal in the true
     # velocity) the flip, of the truth and of the law at the log's step, is over.
     travel = np.concatenate(([0.0], np.cumsum(0.5 * (np.abs(v[1:]) + np.abs(v[:-1])) * case.dt)))
@@ -167,22 +167,23 @@ def test_where_the_law_driven_by_v_is_the_clean_force_the_floor_is_the_noise(
     split: str, index: int, law: str
 ) -> None:
     """The floor's terms, one case each: the ripple, the trend, the drift, cogging, the −x
-    levels with inertia, offset with inertia and Stribeck, the closed loop, and the LuGre law
-    (closed loop; presliding with Stribeck). Each log is given the true velocity, and its force
-    is made the true law driven by it plus the log's noise: the floor is then the noise, and it
-    comes from the logged ``v``."""
+    levels with inertia, offset with inertia and Stribeck, the closed loop, and the floor's
+    reading of the LuGre law (its contact part in the floor's drives, on a closed-loop log and a
+    presliding one). Each log is given the true velocity, and its force is made the true law
+    driven by it plus the log's noise: the floor is then the noise, and it comes from the logged
+    ``v``."""
     case = dataclasses.replace(family.draw_case(split, index, quick=True, law=law), has_v=True)
     log = family.make_log(case)
     truth, v = log.case.truth, log.v
     assert v is not None
-    law = (
+    expected = (
         family.level_factor(truth, log.x, log.t) * simulate(family.contact_params(truth), v, case.dt)
         + family.viscous(truth, v)
         + truth["offset"]
         + family.cogging(truth, log.x)
         + truth["mass"] * np.gradient(v, case.dt)
     )
-    floor, source = family.floor(log.case, log.t, log.x, law + log.noise, v)
+    floor, source = family.floor(log.case, log.t, log.x, expected + log.noise, v)
     assert floor == pytest.approx(float(np.std(log.noise)), rel=1e-3)
     assert source.startswith("logged v")
     # The physical log's floor is at least that: no drive explains the noise.
@@ -195,7 +196,7 @@ def test_where_the_law_driven_by_v_is_the_clean_force_the_floor_is_the_noise(
 def test_a_lugre_log_is_its_leuven_pair_with_another_contact_law(split: str, index: int) -> None:
     """``--law lugre`` changes the contact part alone: the case (recipe, sensors, excitation,
     noise) and every true value outside the contact part are the Leuven log's of the same seed,
-    and so is the motion of a position-driven log."""
+    and so are the force noise and the motion of a position-driven log."""
     leuven = family.draw_case(split, index, seed_base=3, quick=True)
     lugre = family.draw_case(split, index, seed_base=3, quick=True, law="lugre")
     assert dataclasses.replace(lugre, truth=leuven.truth) == leuven
@@ -207,30 +208,35 @@ def test_a_lugre_log_is_its_leuven_pair_with_another_contact_law(split: str, ind
     assert params.W is None and params.n == 1.0 and params.sigma2 == 0.0
     assert params.sigma0 is not None and params.sigma0 > 0.0 and params.sigma1 > 0.0
     assert family.describe(lugre).startswith("LuGre law, ")
+    first, second = family.make_log(leuven), family.make_log(lugre)
+    np.testing.assert_array_equal(first.noise, second.noise)
+    assert not np.array_equal(first.force_true, second.force_true)
     if lugre.recipe.excitation not in family.CLOSED_LOOP:
-        first, second = family.make_log(leuven), family.make_log(lugre)
         np.testing.assert_array_equal(first.x, second.x)
-        assert not np.array_equal(first.force_true, second.force_true)
+
+
+def test_an_unknown_law_is_refused() -> None:
     with pytest.raises(ValueError, match="`law` must be one of \\['leuven', 'lugre'\\], got 'dahl'"):
-        family.draw_case(split, index, law="dahl")
+        family.draw_case("tuning", 0, law="dahl")
 
 
 def test_a_lugre_bristle_reaches_95_percent_of_the_level_over_the_presliding_range() -> None:
     """Where presliding is hidden, the LuGre law's force builds up from rest as
     Fs·(1 − e^(−σ0·x/Fs)) at speeds far below Vs: 1 − e⁻³ of Fs at the experimenter's range.
-    Where it is not, one implicit step of a thousand ``STIFF_DELTA`` (still far below any
-    encoder step) takes it to 1000/1001 of its level."""
+    Where it is not, one implicit step of a thousand ``STIFF_DELTA`` (far longer than the
+    bristle's reach) takes it to 1000/1001 of its level."""
     case = family.draw_case("held-out", 4, quick=True, law="lugre")
     truth = case.truth
     assert "presliding_hysteresis" in case.recipe.hidden and truth["Fs_neg"] == truth["Fs"]
     reach = truth["excitation_presliding_range"]
+    assert truth["presliding_range"] == pytest.approx(reach)
     x = np.linspace(0.0, 2.0 * reach, 20001)
-    force = simulate_position(family.contact_params(truth), x, 1.0)  # 1e-9 m/s or so: far below Vs
+    force = simulate_position(family.contact_params(truth), x, 1.0)  # 1e-4 ranges a second: far below Vs
     curve = truth["Fs"] * (1.0 - np.exp(-truth["sigma0"] * x / truth["Fs"]))
     np.testing.assert_allclose(force, curve, atol=1e-3 * truth["Fs"])
     assert force[10000] == pytest.approx((1.0 - math.exp(-3.0)) * truth["Fs"], rel=2e-3)
     stiff = family.draw_case("held-out", 1, quick=True, law="lugre").truth
-    assert stiff["presliding_range"] == family.STIFF_DELTA
+    assert stiff["presliding_range"] == pytest.approx(family.LUGRE_REACH * family.STIFF_DELTA)
     step = simulate_position(family.contact_params(stiff), np.array([0.0, 1e3 * family.STIFF_DELTA]), 1.0)
     assert step[-1] == pytest.approx(stiff["Fs"] * 1e3 / (1e3 + 1.0), rel=1e-6)
 

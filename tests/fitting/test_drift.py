@@ -56,7 +56,8 @@ def test_a_drift_that_a_position_dependence_stands_in_for_is_found_in_its_place(
     record, Stribeck, reversal legs, no `v`): named first, a position dependence took the drift's
     place and the drift gained too little beside it; in its place the drift gains more, so the
     rounds run again with the drift alongside, and Stribeck is named alone."""
-    log = family().make_log(family().draw_case("held-out", 3, seed_base=12000))
+    generator = family()
+    log = generator.make_log(generator.draw_case("held-out", 3, seed_base=12000))
     assert log.case.recipe.extra == "drift" and log.v is None
     with threadpool_limits(1):
         selection = select.select(MotionData(log.t, log.x, log.f), ("coulomb", "viscous"), Settings())
