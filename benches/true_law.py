@@ -25,31 +25,34 @@ PLANTS = {
     "study": closed_loop.TRUE,
     # Presliding over about 3·Fs/σ0 = 90 µm, damped by σ1.
     "lugre_soft": Params(Fc=2.0, Fs=3.0, Vs=2e-3, delta=2.0, n=1.0, sigma0=1e5, sigma1=300.0, sigma2=5.0),
-    # Presliding over about 9 µm, a heavier Stribeck drop, little viscous friction.
+    # Presliding over about 9 µm; Fs − Fc = 2 N over a wider Stribeck curve (δ = 1); little viscous
+    # friction.
     "lugre_stiff": Params(Fc=4.0, Fs=6.0, Vs=4e-3, delta=1.0, n=1.0, sigma0=2e6, sigma1=1000.0, sigma2=2.0),
 }
 MODES = ("feedforward", "observer")
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--plant", choices=list(PLANTS), nargs="+", default=list(PLANTS))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--plant", choices=list(PLANTS), nargs="+", default=list(PLANTS), help="the plants (default: all)"
+    )
     arguments = parser.parse_args()
+    compensations = [f"{kind}_{mode}" for kind in ("leuven", "identified") for mode in MODES]
     columns = ["plant", "named", "mode", "RMS identified / true law [µm]", "ratio",
                "glitch identified / true law [µm]", "ratio"]  # fmt: skip
     print("| " + " | ".join(columns) + " |\n|---|---|---|---:|---:|---:|---:|")
     for name in arguments.plant:
         scenario = closed_loop.Scenario(true=PLANTS[name], model=PLANTS[name])
         identified = closed_loop.identify_stage(scenario)
-        names = [f"leuven_{mode}" for mode in MODES] + [f"identified_{mode}" for mode in MODES]
-        metrics = closed_loop.compare(scenario, names, identified=identified).metrics
+        metrics = closed_loop.compare(scenario, compensations, identified=identified).metrics
+        named = ", ".join(identified.named)
         for mode in MODES:
-            mine, truth = metrics[f"identified_{mode}"], metrics[f"leuven_{mode}"]
-            named = ", ".join(identified.named)
+            found, true_law = metrics[f"identified_{mode}"], metrics[f"leuven_{mode}"]
             print(
-                f"| {name} | {named} | {mode} | {mine.rms * 1e6:.3f} / {truth.rms * 1e6:.3f} "
-                f"| {mine.rms / truth.rms:.2f}× | {mine.glitch * 1e6:.3f} / {truth.glitch * 1e6:.3f} "
-                f"| {mine.glitch / truth.glitch:.2f}× |",
+                f"| {name} | {named} | {mode} | {found.rms * 1e6:.3f} / {true_law.rms * 1e6:.3f} "
+                f"| {found.rms / true_law.rms:.2f}× | {found.glitch * 1e6:.3f} / {true_law.glitch * 1e6:.3f} "
+                f"| {found.glitch / true_law.glitch:.2f}× |",
                 flush=True,
             )
     return 0
