@@ -59,8 +59,16 @@ def test_a_drift_that_a_position_dependence_stands_in_for_is_found_in_its_place(
     generator = family()
     log = generator.make_log(generator.draw_case("held-out", 3, seed_base=12000))
     assert log.case.recipe.extra == "drift" and log.v is None
+    said: list[str] = []
     with threadpool_limits(1):
-        selection = select.select(MotionData(log.t, log.x, log.f), ("coulomb", "viscous"), Settings())
+        selection = select.select(
+            MotionData(log.t, log.x, log.f), ("coulomb", "viscous"), Settings(), said.append
+        )
     assert selection.drift
     assert selection.final.structure.effects == frozenset({"coulomb", "viscous", "stribeck"})
+    # The progress says how the drift counted.
+    assert any(
+        line.startswith("a drift of the level (in the place of position_dependence: it gains")
+        for line in said
+    )
     assert not selection.written.structure.drift

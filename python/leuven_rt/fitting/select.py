@@ -478,9 +478,10 @@ def _select_on(
     base = fit(structure, scales, target, base.theta)
     say("selecting effects")
     run = _both_ways(base, scales, target, floor, settings, permissive, say)
-    if not _drifting(run.final, run.tried, scales, run.target, settings, run.unit):
+    counts = _drifting(run.final, run.tried, scales, run.target, settings, run.unit)
+    if counts is None:
         return run
-    say("a drift of the level: selecting again with it fitted alongside")
+    say(f"a drift of the level ({counts}): selecting again with it fitted alongside")
     # The rounds again as the first time: forward at the forward rounds' scale.
     base = fit(structure.with_drift(), scales, target, base.theta)
     run = _both_ways(base, scales, target, run.floor, settings, permissive, say)
@@ -723,14 +724,15 @@ def _drifting(
     target: Target,
     settings: Settings,
     unit: float,
-) -> bool:
-    """Whether a drift of the level counts beside ``final``: alone, or beside an effect of the
-    last round that gained more than the threshold but not evenly over time, or that was taken
-    out again for it (``tried``: those effects and their gains in units), or in the place of a
-    named position dependence. A level that drifts makes an effect's gain uneven in time (it
-    helps where the drift is small and harms where it is large), so neither the effect nor the
-    drift counts alone; the drift counts when, fitted beside that effect, it gains ``drift``
-    units over the effect alone, one-sided, and the two together gain over ``final``.
+) -> str | None:
+    """How a drift of the level counts beside ``final``, in words for the progress (None where it
+    does not): alone, or beside an effect of the last round that gained more than the threshold
+    but not evenly over time, or that was taken out again for it (``tried``: those effects and
+    their gains in units), or in the place of a named position dependence. A level that drifts
+    makes an effect's gain uneven in time (it helps where the drift is small and harms where it
+    is large), so neither the effect nor the drift counts alone; the drift counts when, fitted
+    beside that effect, it gains ``drift`` units over the effect alone, one-sided, and the two
+    together gain over ``final``.
 
     A level that drifts in time also shows as one that depends on the position, wherever the
     motion wanders along the stroke over the record; named first, the position dependence leaves
@@ -747,7 +749,7 @@ def _drifting(
     drift, effect_alone = settings.drift * unit, settings.significance * unit
     drifting = fit(final.structure.with_drift(), scales, target, final.theta, SCREEN)
     if _significant(final, drifting, target, drift, settings):
-        return True
+        return f"it gains {(final.mse - drifting.mse) / unit:.2f} units"
     for effect, gain in tried:
         if not gain > settings.significance or final.structure.has(effect):
             continue
@@ -758,15 +760,16 @@ def _drifting(
         if _significant(candidate, both, target, drift, settings) and _significant(
             final, both, target, drift + effect_alone, settings
         ):
-            return True
+            return f"beside {effect}, uneven alone: the two gain {(final.mse - both.mse) / unit:.2f} units"
     if final.structure.has("position_dependence"):
         without, _ = _reduced(final, "position_dependence", scales, target)
         instead = fit(without.structure.with_drift(), scales, target, without.theta, SCREEN)
         # Better than the position dependence by what an effect must gain: a trend of the level
         # on a log whose motion follows the time would otherwise go to the drift on a tie.
         if final.mse - instead.mse > effect_alone and _significant(without, instead, target, drift, settings):
-            return True
-    return False
+            gain, over = (without.mse - instead.mse) / unit, (final.mse - instead.mse) / unit
+            return f"in the place of position_dependence: it gains {gain:.2f} units, {over:.2f} more than it"
+    return None
 
 
 def _held(fitted: Fitted, structure: Structure, scales: Scales) -> dict[str, float]:
