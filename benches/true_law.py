@@ -17,6 +17,7 @@ n = 1) that no part of the workflow was tuned on.
 from __future__ import annotations
 
 import argparse
+from collections.abc import Sequence
 
 from leuven_rt import Params
 from leuven_rt.studies import closed_loop
@@ -32,12 +33,12 @@ PLANTS = {
 MODES = ("feedforward", "observer")
 
 
-def main() -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument(
         "--plant", choices=list(PLANTS), nargs="+", default=list(PLANTS), help="the plants (default: all)"
     )
-    arguments = parser.parse_args()
+    arguments = parser.parse_args(argv)
     compensations = [f"{kind}_{mode}" for kind in ("leuven", "identified") for mode in MODES]
     columns = ["plant", "named", "mode", "RMS identified / true law [µm]", "ratio",
                "glitch identified / true law [µm]", "ratio"]  # fmt: skip

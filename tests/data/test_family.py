@@ -215,9 +215,14 @@ def test_a_lugre_log_is_its_leuven_pair_with_another_contact_law(split: str, ind
         np.testing.assert_array_equal(first.x, second.x)
 
 
-def test_an_unknown_law_is_refused() -> None:
+def test_an_unknown_law_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(ValueError, match="`law` must be one of \\['leuven', 'lugre'\\], got 'dahl'"):
         family.draw_case("tuning", 0, law="dahl")
+    with pytest.raises(SystemExit) as exit_info:
+        family.main([str(tmp_path), "--law", "dahl"])
+    assert exit_info.value.code == 2
+    assert "--law: invalid choice: 'dahl'" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
 
 
 def test_a_lugre_bristle_reaches_95_percent_of_the_level_over_the_presliding_range() -> None:

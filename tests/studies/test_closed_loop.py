@@ -8,6 +8,7 @@ asserted."""
 
 from __future__ import annotations
 
+import importlib.util
 from dataclasses import replace
 from pathlib import Path
 
@@ -230,4 +231,20 @@ def test_the_identification_of_another_stage_is_refused(comparison: Comparison) 
         "not_applicable",
         "identified",
         ["mass", "noise"],
+    )
+
+
+def test_the_true_law_bench_refuses_an_unknown_plant(capsys: pytest.CaptureFixture[str]) -> None:
+    """``benches/true_law.py --plant`` takes the plants it knows, and names them when given another,
+    before any identification runs."""
+    path = Path(__file__).resolve().parents[2] / "benches" / "true_law.py"
+    spec = importlib.util.spec_from_file_location("leuven_rt_bench_true_law", path)
+    assert spec is not None and spec.loader is not None
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    with pytest.raises(SystemExit) as exit_info:
+        bench.main(["--plant", "mujoco"])
+    assert exit_info.value.code == 2
+    assert "--plant: invalid choice: 'mujoco' (choose from 'study', 'lugre_soft', 'lugre_stiff')" in (
+        capsys.readouterr().err
     )
