@@ -13,6 +13,8 @@ __all__ = [
     "MAX_HARMONICS",
     "MAX_ITERATIONS",
     "MAX_RIPPLES",
+    "MODEL_FILE_FORMAT",
+    "MODEL_FILE_VERSION",
     "CompensatorEngine",
     "ConcurrentUseError",
     "CoreLevel",
@@ -41,6 +43,8 @@ __all__ = [
 __version__: str
 MAX_ELEMENTS: int
 MAX_ITERATIONS: int
+MODEL_FILE_FORMAT: str
+MODEL_FILE_VERSION: int
 MAX_RIPPLES: int
 MAX_HARMONICS: int
 ERROR_KINDS: list[str]

@@ -35,10 +35,10 @@ from .level import PositionForce, PositionLevel
 from .params import Params, _real
 from .units import Units
 
-#: The value of the ``"format"`` key that marks a model file.
-FORMAT = "leuven-rt model"
-#: The version this leuven-rt writes (it reads every version from 1 to this).
-VERSION = 2
+#: The value of the ``"format"`` key that marks a model file (gms-file's).
+FORMAT: str = _core.MODEL_FILE_FORMAT
+#: The version this leuven-rt writes (it reads every version from 1 to this; gms-file's).
+VERSION: int = _core.MODEL_FILE_VERSION
 #: The columns a motion signal can be made from (:class:`Reconstruction`).
 SOURCES = ("velocity", "position")
 
@@ -50,14 +50,18 @@ class Reconstruction:
     """How the model's motion signal is made from a log, as identify chose it: the log's
     ``source`` column (``"velocity"``: ``v``; ``"position"``: ``x``) through a zero-phase
     4th-order Butterworth low-pass at ``cutoff`` Hz, or as logged (``cutoff=None``: the velocity
-    as logged, the position's raw differences). A model file without one uses the position
-    through a low-pass at a tenth of the Nyquist frequency (version 1's way).
+    as logged, the position's raw differences). The acceleration of the inertia term comes from
+    the same column through a low-pass at ``acceleration_cutoff`` Hz (a key of version 3), or
+    without one at the lower of ``cutoff`` and a tenth of the Nyquist frequency. A model file
+    without a reconstruction uses the position through a low-pass at a tenth of the Nyquist
+    frequency (version 1's way).
 
-    The types are checked here; the cutoff's rule (finite, > 0) when a :class:`ModelFile` holds
-    it."""
+    The types are checked here; the cutoffs' rule (finite, > 0) when a :class:`ModelFile` holds
+    them."""
 
     source: Source
     cutoff: float | None = None
+    acceleration_cutoff: float | None = None
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -70,10 +74,17 @@ class Reconstruction:
             )
         if self.cutoff is not None:
             object.__setattr__(self, "cutoff", _real("reconstruction.cutoff", self.cutoff))
+        if self.acceleration_cutoff is not None:
+            value = _real("reconstruction.acceleration_cutoff", self.acceleration_cutoff)
+            object.__setattr__(self, "acceleration_cutoff", value)
 
     def to_dict(self) -> dict[str, Any]:
-        """The file's ``reconstruction`` object."""
-        return {"source": self.source, "cutoff": self.cutoff}
+        """The file's ``reconstruction`` object (``acceleration_cutoff`` only where there is one,
+        as gms-file writes it)."""
+        out: dict[str, Any] = {"source": self.source, "cutoff": self.cutoff}
+        if self.acceleration_cutoff is not None:
+            out["acceleration_cutoff"] = self.acceleration_cutoff
+        return out
 
 
 def _object(value: Any, kind: type) -> Any:
@@ -198,7 +209,7 @@ class ModelFile:
 
     @classmethod
     def from_dict(cls, mapping: Mapping[str, Any]) -> ModelFile:
-        """Reads a model file's object (version 1 or 2), or a plain parameter file's (no
+        """Reads a model file's object (version 1 to 3), or a plain parameter file's (no
         ``"format"`` key), with exactly the rules of :meth:`from_json`: what JSON cannot hold (a
         NaN, a key that is not text, an object of another type) is refused too."""
         return cls._from_checked(_core.model_file_from_object(mapping))
@@ -209,7 +220,7 @@ class ModelFile:
 
     @classmethod
     def from_json(cls, text: str) -> ModelFile:
-        """Parses the text of a model file (version 1 or 2) or a plain parameter file."""
+        """Parses the text of a model file (version 1 to 3) or a plain parameter file."""
         if not isinstance(text, str):
             raise ParameterError(
                 f"a model file's text must be a str, got {type(text).__name__}",

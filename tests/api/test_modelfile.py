@@ -57,7 +57,7 @@ def test_the_json_form_is_the_documented_one() -> None:
         "reconstruction",
     ]
     assert list(mapping) == [*keys, "report"]
-    assert mapping["format"] == "leuven-rt model" and mapping["version"] == 2 and mapping["units"] == "rotary"
+    assert mapping["format"] == "leuven-rt model" and mapping["version"] == 3 and mapping["units"] == "rotary"
     assert mapping["friction"] == Params(**MAXWELL).to_dict()  # exactly the parameter file
     assert mapping["level"] == {
         "middle": 0.0,
@@ -130,9 +130,9 @@ def test_measurement_force() -> None:
 
 def test_load_names_the_file(tmp_path: Path) -> None:
     path = tmp_path / "model.json"
-    text = full_model().to_json().replace('"version": 2', '"version": 3')
+    text = full_model().to_json().replace('"version": 3', '"version": 4')
     path.write_text(text, encoding="utf-8")
-    with pytest.raises(ModelFileError, match=rf"^{path}: `version` is 3: .*upgrade leuven-rt") as caught:
+    with pytest.raises(ModelFileError, match=rf"^{path}: `version` is 4: .*upgrade leuven-rt") as caught:
         ModelFile.load(path)
     assert (caught.value.kind, caught.value.field) == ("invalid_choice", "version")
     with pytest.raises(ModelFileError, match=r"cannot read .*missing\.json") as caught:
@@ -146,7 +146,7 @@ def test_load_names_the_file(tmp_path: Path) -> None:
         ModelFile.load(tmp_path)
 
 
-def test_a_version_1_file_loads_and_is_written_as_version_2() -> None:
+def test_a_version_1_file_loads_and_is_written_as_version_3() -> None:
     """Version 1 files (no position_force, no reconstruction) keep loading; saving writes the
     current version with those keys at their defaults."""
     mapping = full_model().to_dict()
@@ -155,7 +155,27 @@ def test_a_version_1_file_loads_and_is_written_as_version_2() -> None:
     model = ModelFile.from_dict(mapping)
     assert model == replace(full_model(), position_force=None, reconstruction=None)
     written = json.loads(model.to_json())
-    assert written["version"] == 2 and written["position_force"] is None and written["reconstruction"] is None
+    assert written["version"] == 3 and written["position_force"] is None and written["reconstruction"] is None
+
+
+def test_the_acceleration_cutoff_is_a_key_of_version_3() -> None:
+    """A reconstruction's own acceleration cutoff is written only where there is one (so a file
+    without it reads as before), round-trips, and is refused in a version 2 file and as null."""
+    model = replace(full_model(), reconstruction=Reconstruction("position", None, acceleration_cutoff=400.0))
+    mapping = json.loads(model.to_json())
+    assert mapping["reconstruction"] == {"source": "position", "cutoff": None, "acceleration_cutoff": 400.0}
+    assert ModelFile.from_json(model.to_json()) == model
+    assert "acceleration_cutoff" not in json.loads(full_model().to_json())["reconstruction"]
+    older = dict(mapping, version=2)
+    with pytest.raises(ModelFileError, match=r"it came with version 3") as caught:
+        ModelFile.from_dict(older)
+    assert (caught.value.kind, caught.value.field) == ("unknown_key", "reconstruction.acceleration_cutoff")
+    for value, kind in [(None, "wrong_type"), (0.0, "not_positive")]:
+        changed = json.loads(json.dumps(mapping))
+        changed["reconstruction"]["acceleration_cutoff"] = value
+        with pytest.raises(ModelFileError) as caught:
+            ModelFile.from_dict(changed)
+        assert (caught.value.kind, caught.value.field) == (kind, "reconstruction.acceleration_cutoff")
 
 
 def test_from_dict_refuses_what_json_cannot_hold() -> None:

@@ -6,14 +6,15 @@ from __future__ import annotations
 
 import inspect
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import leuven_rt as lr
-from leuven_rt import Compensator, ModelFile, Params, PositionForce, PositionLevel, Ripple
-from leuven_rt.data.signals import default_cutoff, estimate_derivatives
+from leuven_rt import Compensator, ModelFile, Params, PositionForce, PositionLevel, Reconstruction, Ripple
+from leuven_rt.data.signals import default_cutoff, estimate_derivatives, lowpass
 from leuven_rt.data.synthetic import SyntheticData, make_data
 from leuven_rt.errors import DataError, OutputError, ResamplingWarning
 from leuven_rt.prediction import Prediction, predict
@@ -91,6 +92,25 @@ def test_the_level_scales_the_contact_part_and_the_measurement_terms_add(synthet
         prediction.f_model - prediction.friction, 0.3 + 0.05 * a, rtol=1e-12, atol=1e-12
     )
     assert not np.allclose(prediction.friction, plain.friction)
+
+
+def test_the_acceleration_comes_through_the_file_s_own_cutoff(synthetic: SyntheticData) -> None:
+    """A reconstruction's ``acceleration_cutoff`` is the low-pass the inertia term's acceleration
+    is taken through (the default: at most a tenth of the Nyquist frequency), and ``--cutoff``
+    replaces the motion's cutoff but keeps it."""
+    data, dt = synthetic.data, synthetic.data.dt
+    cutoff = 0.6 * 0.5 / dt
+    own = ModelFile(friction=synthetic.params, inertia=0.05,
+                    reconstruction=Reconstruction("position", acceleration_cutoff=cutoff))  # fmt: skip
+    prediction = predict(own, data)
+    a = np.gradient(np.gradient(lowpass(data.x, dt, cutoff), dt), dt)
+    np.testing.assert_allclose(prediction.f_model - prediction.friction, 0.05 * a, rtol=1e-12, atol=1e-12)
+    default = predict(replace(own, reconstruction=Reconstruction("position")), data)
+    np.testing.assert_array_equal(default.friction, prediction.friction)
+    assert not np.allclose(default.f_model, prediction.f_model)
+    replaced = predict(own, data, cutoff=0.2 * 0.5 / dt)
+    assert replaced.reconstruction == Reconstruction("position", 0.2 * 0.5 / dt, acceleration_cutoff=cutoff)
+    assert replaced.to_dict()["reconstruction"]["acceleration_cutoff"] == cutoff
 
 
 def test_the_model_file_s_position_force_is_added(synthetic: SyntheticData) -> None:

@@ -111,7 +111,7 @@ json_values = st.recursive(
 
 @st.composite
 def model_files(draw: st.DrawFn) -> dict[str, Any]:
-    version = draw(st.sampled_from([1, 2]))
+    version = draw(st.sampled_from([1, 2, 3]))
     units = draw(st.sampled_from(["linear", "rotary"]))
     out: dict[str, Any] = {"format": "leuven-rt model", "version": version, "units": units}
     out["friction"] = draw(frictions())
@@ -120,12 +120,14 @@ def model_files(draw: st.DrawFn) -> dict[str, Any]:
         "measurement": {"offset": draw(small), "inertia": draw(st.floats(0.0, 10.0))},
         "report": draw(st.none() | st.dictionaries(st.text(max_size=6), json_values, max_size=4)),
     }
-    if version == 2:
+    if version >= 2:
         optional["position_force"] = draw(position_terms())
         cutoffs = st.none() | st.floats(0.1, 500.0)
         sources = st.sampled_from(["velocity", "position"])
+        # The acceleration's own cutoff came with version 3.
+        extra = {"acceleration_cutoff": st.floats(0.1, 500.0)} if version == 3 else {}
         optional["reconstruction"] = draw(
-            st.none() | st.fixed_dictionaries({"source": sources, "cutoff": cutoffs})
+            st.none() | st.fixed_dictionaries({"source": sources, "cutoff": cutoffs}, optional=extra)
         )
     for key, value in optional.items():
         if draw(st.booleans()):
@@ -178,7 +180,7 @@ def mutated_texts(draw: st.DrawFn) -> str:
         else:
             parent[path[-1]] = draw(REPLACEMENTS)
     if kind == "version" and "format" in document:
-        document["version"] = draw(st.sampled_from([0, 3, 2.0, "2", None, -1]))
+        document["version"] = draw(st.sampled_from([0, 4, 2.0, "2", None, -1]))
     text = json.dumps(document)
     if kind == "duplicate":
         key = draw(st.sampled_from(['"units"', '"Fc"', '"middle"', '"offset"', '"cutoff"', '"period"']))

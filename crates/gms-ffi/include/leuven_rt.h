@@ -237,7 +237,7 @@ leuven_rt_status leuven_rt_compensator_create(const struct leuven_rt_params *par
                                               struct leuven_rt_error *error);
 
 // Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
-// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+// version 1 to 3) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
 // bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 //
 // The text is read by the reader the Python package uses (the Rust crate gms-file), so both

@@ -309,7 +309,7 @@ pub unsafe extern "C" fn leuven_rt_compensator_create(
 }
 
 /// Creates a compensator from the text of a model file (what `leuven-rt identify` writes,
-/// version 1 or 2) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
+/// version 1 to 3) or of a parameter file (the JSON that `leuven_rt.Params.save` writes): `len`
 /// bytes at `json`, UTF-8, no terminating NUL needed. Otherwise as `leuven_rt_compensator_create`.
 ///
 /// The text is read by the reader the Python package uses (the Rust crate gms-file), so both

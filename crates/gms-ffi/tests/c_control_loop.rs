@@ -290,7 +290,7 @@ const EXPECTED: &[(&str, i32, &str, usize)] = &[
     ("set_position_null", INVALID_POINTER, "-", 0),
     ("set_position_ok", OK, "-", 0),
     ("model_no_level", OK, "-", 0),
-    ("model_version_3", INVALID_FILE, "-", 0),
+    ("model_version_4", INVALID_FILE, "-", 0),
     ("model_version_missing", INVALID_FILE, "-", 0),
     ("model_format_other", INVALID_FILE, "-", 0),
     ("model_unknown_key", INVALID_FILE, "-", 0),

@@ -180,7 +180,10 @@ pub enum Source {
 
 /// How the model's motion signal is made from a log, as identify chose it: the `source`
 /// column through a zero-phase 4th-order Butterworth low-pass at `cutoff` Hz, or as logged
-/// (`cutoff` `None`). Both keys are required (`"cutoff": null` for none).
+/// (`cutoff` `None`). Both keys are required (`"cutoff": null` for none). The acceleration of
+/// the inertia term comes from the same column through a low-pass at `acceleration_cutoff` Hz
+/// (a key of version 3, optional); without it, at the lower of `cutoff` and a tenth of the
+/// Nyquist frequency.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Reconstruction {
@@ -189,6 +192,14 @@ pub struct Reconstruction {
     /// The low-pass cutoff \[Hz\], or `None` for the signal as logged.
     #[serde(deserialize_with = "Option::deserialize")]
     pub cutoff: Option<f64>,
+    /// The acceleration's low-pass cutoff \[Hz\], or `None` for the default (the lower of
+    /// `cutoff` and a tenth of the Nyquist frequency). Not a key of version 2 model files.
+    #[serde(
+        default,
+        deserialize_with = "present",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub acceleration_cutoff: Option<f64>,
 }
 
 /// A model file (docs/data-and-reports.md#model-file) as plain values: the friction model and
@@ -207,7 +218,7 @@ pub struct ModelFile {
     /// The measurement terms (not friction).
     pub measurement: Measurement,
     /// How the motion signal is made from a log; `None` is version 1's: the position through a
-    /// zero-phase low-pass at a tenth of the Nyquist frequency.
+    /// zero-phase low-pass at a tenth of the Nyquist frequency, and its acceleration too.
     pub reconstruction: Option<Reconstruction>,
     /// The fit's report, or none.
     pub report: Option<Report>,

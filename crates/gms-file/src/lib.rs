@@ -6,7 +6,7 @@
 //! does not allow is refused.
 //!
 //! - A **model file** is a JSON object with `"format": "leuven-rt model"` and a `version` (this
-//!   crate writes [`VERSION`] 2 and reads 1 and 2; a later one is refused with "upgrade
+//!   crate writes [`VERSION`] 3 and reads 1 to 3; a later one is refused with "upgrade
 //!   leuven-rt"): `units`, `friction`, `level`, `position_force`, `measurement`,
 //!   `reconstruction` and `report`.
 //! - A **parameter file** is the `friction` object alone (docs/parameters.md#keys); it reads as
@@ -26,7 +26,7 @@
 //! ```
 //! use gms_file::ModelFile;
 //!
-//! let text = r#"{"format": "leuven-rt model", "version": 2, "units": "linear",
+//! let text = r#"{"format": "leuven-rt model", "version": 3, "units": "linear",
 //!     "friction": {"Fc": 1.0, "Fs": 1.5, "Vs": 0.001, "delta": 2.0, "n": 2.0, "sigma0": 1e5}}"#;
 //! let file = ModelFile::from_json(text)?;
 //! let model = file.validate()?; // a gms-dyn ParameterSet and a gms-core Level
@@ -65,14 +65,14 @@ struct ReadmeSnippets;
 pub const FORMAT: &str = "leuven-rt model";
 
 /// The version this crate writes, and the latest it reads (it reads every version from 1).
-pub const VERSION: u64 = 2;
+pub const VERSION: u64 = 3;
 
 /// The largest file [`ModelFile::load`] reads: far above any real model file, small enough that
 /// a path to a device or a huge file cannot exhaust memory.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
 impl ModelFile {
-    /// Reads the text of a model file (version 1 or 2) or of a parameter file.
+    /// Reads the text of a model file (version 1 to 3) or of a parameter file.
     pub fn from_json(text: &str) -> Result<Self, FileError> {
         read::model_from_value(read::parse(text)?)
     }

@@ -22,10 +22,11 @@ use crate::error::{FileError, Problem};
 use crate::file::{Friction, Measurement, ModelFile, PositionTerms, Reconstruction, Report, Units};
 use crate::{FORMAT, MAX_FILE_BYTES, VERSION};
 
-/// A version 2 model file's object.
+/// A version 2 or 3 model file's object (version 2 has no `reconstruction.acceleration_cutoff`,
+/// checked after the read).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct BodyV2 {
+struct Body {
     #[allow(dead_code)] // checked before the typed read, by `kind`
     format: IgnoredAny,
     #[allow(dead_code)] // checked before the typed read, by `kind`
@@ -63,8 +64,8 @@ struct BodyV1 {
     report: Option<Report>,
 }
 
-impl From<BodyV2> for ModelFile {
-    fn from(body: BodyV2) -> Self {
+impl From<Body> for ModelFile {
+    fn from(body: Body) -> Self {
         ModelFile {
             units: body.units,
             friction: body.friction,
@@ -149,7 +150,8 @@ pub(crate) fn model_from_value(value: Value) -> Result<ModelFile, FileError> {
             track(value).map_err(|error: FileError| error.under("friction"))?,
         )),
         Kind::Model(1) => version_one(track(value)?),
-        Kind::Model(_) => Ok(track::<BodyV2>(value)?.into()),
+        Kind::Model(2) => version_two(track(value)?),
+        Kind::Model(_) => Ok(track::<Body>(value)?.into()),
     }
 }
 
@@ -175,6 +177,22 @@ fn version_one(body: BodyV1) -> Result<ModelFile, FileError> {
             key: "friction.sigma2_neg".to_owned(),
             problem: Problem::UnknownKey,
             message: "unknown key in a version 1 model file (it came with version 2)".to_owned(),
+        });
+    }
+    Ok(body.into())
+}
+
+/// A version 2 body, refusing the key that came only with version 3.
+fn version_two(body: Body) -> Result<ModelFile, FileError> {
+    // Present exactly when the key is: the reader refuses `null` for it.
+    if body
+        .reconstruction
+        .is_some_and(|r| r.acceleration_cutoff.is_some())
+    {
+        return Err(FileError::Shape {
+            key: "reconstruction.acceleration_cutoff".to_owned(),
+            problem: Problem::UnknownKey,
+            message: "unknown key in a version 2 model file (it came with version 3)".to_owned(),
         });
     }
     Ok(body.into())
@@ -533,7 +551,7 @@ impl<'de> MapAccess<'de> for StrictMap {
     }
 }
 
-/// A version 2 model file as written: the keys in the documented order.
+/// A model file as written (version [`VERSION`]): the keys in the documented order.
 #[derive(Serialize)]
 struct Written<'a> {
     format: &'static str,

@@ -170,6 +170,18 @@ impl ModelFile {
                 });
             }
         }
+        if let Some(cutoff) = self.reconstruction.and_then(|r| r.acceleration_cutoff) {
+            if !(cutoff.is_finite() && cutoff > 0.0) {
+                return Err(FileError::Invalid {
+                    key: "reconstruction.acceleration_cutoff".to_owned(),
+                    rule: "not_positive",
+                    message: format!(
+                        "must be finite and > 0 [Hz] (or absent for the default), got {}",
+                        gms_core::Shown(cutoff)
+                    ),
+                });
+            }
+        }
         Ok(Model {
             params,
             level,

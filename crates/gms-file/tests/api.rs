@@ -49,9 +49,20 @@ fn the_writer_refuses_what_the_reader_would_refuse() {
     file.reconstruction = Some(Reconstruction {
         source: Source::Position,
         cutoff: Some(f64::INFINITY),
+        acceleration_cutoff: None,
     });
     let error = file.to_value().unwrap_err();
     assert_eq!(error.key(), Some("reconstruction.cutoff"));
+    file.reconstruction = Some(Reconstruction {
+        source: Source::Position,
+        cutoff: None,
+        acceleration_cutoff: Some(0.0),
+    });
+    let error = file.to_value().unwrap_err();
+    assert_eq!(
+        (error.kind(), error.key()),
+        (ErrorKind::Value, Some("reconstruction.acceleration_cutoff"))
+    );
     file.reconstruction = None;
     file.friction.W = None;
     let error = file.to_json().unwrap_err();
@@ -156,11 +167,11 @@ fn every_refusal_of_the_reader_is_named() {
             Some(gms_file::Problem::OutOfRange),
         ),
         (
-            text.replace("\"version\": 2", "\"version\": 9"),
+            text.replace("\"version\": 3", "\"version\": 9"),
             "invalid_choice",
             None,
         ),
-        (text.replace("\"version\": 2,", ""), "missing_key", None),
+        (text.replace("\"version\": 3,", ""), "missing_key", None),
         (text.replace("\"Fc\": 1.0", "\"Fc\": NaN"), "not_json", None),
     ] {
         let error = ModelFile::from_json(&edited).unwrap_err();
@@ -176,4 +187,47 @@ fn every_refusal_of_the_reader_is_named() {
     let mut file = ModelFile::new(friction());
     file.friction.Fs = 0.5;
     assert_eq!(file.validate().unwrap_err().kind_name(), None);
+}
+
+#[test]
+fn the_acceleration_cutoff_came_with_version_3() {
+    let value = json!({"format": "leuven-rt model", "version": 3, "units": "linear",
+        "friction": {"Fc": 1, "Fs": 2, "Vs": 1, "delta": 2, "n": 2, "sigma0": 1e5},
+        "reconstruction": {"source": "position", "cutoff": null, "acceleration_cutoff": 400.0}});
+    let file = ModelFile::from_value(value.clone()).unwrap();
+    assert_eq!(
+        file.reconstruction.and_then(|r| r.acceleration_cutoff),
+        Some(400.0)
+    );
+    // Written back as read, and without the key where there is none (so a default stays one).
+    assert_eq!(
+        file.to_value().unwrap()["reconstruction"],
+        value["reconstruction"]
+    );
+    let mut without = value.clone();
+    without["reconstruction"] = json!({"source": "position", "cutoff": null});
+    let read = ModelFile::from_value(without.clone()).unwrap();
+    assert_eq!(
+        read.to_value().unwrap()["reconstruction"],
+        without["reconstruction"]
+    );
+
+    let mut older = value.clone();
+    older["version"] = json!(2);
+    let error = ModelFile::from_value(older).unwrap_err();
+    assert_eq!(
+        (error.kind(), error.key()),
+        (ErrorKind::Shape, Some("reconstruction.acceleration_cutoff"))
+    );
+    assert!(
+        error.to_string().contains("it came with version 3"),
+        "{error}"
+    );
+    let mut null = value;
+    null["reconstruction"]["acceleration_cutoff"] = json!(null);
+    let error = ModelFile::from_value(null).unwrap_err();
+    assert_eq!(
+        (error.kind(), error.key()),
+        (ErrorKind::Shape, Some("reconstruction.acceleration_cutoff"))
+    );
 }

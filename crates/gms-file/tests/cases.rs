@@ -69,6 +69,6 @@ fn every_accepted_case_round_trips_through_the_writer() {
         let again = ModelFile::from_json(&text).unwrap();
         assert_eq!(again, file, "{}", case["name"]);
         assert_eq!(again.to_json().unwrap(), text, "{}", case["name"]);
-        assert!(text.contains("\"version\": 2"), "{}", case["name"]);
+        assert!(text.contains("\"version\": 3"), "{}", case["name"]);
     }
 }

@@ -229,7 +229,7 @@ fn model_dict<'py>(py: Python<'py>, file: &ModelFile) -> PyResult<Bound<'py, PyA
     to_python(py, &value)
 }
 
-/// Reads the text of a model file (version 1 or 2) or of a parameter file and returns its
+/// Reads the text of a model file (version 1 to 3) or of a parameter file and returns its
 /// validated plain values as a dict of the current version; raises `ModelFileError`.
 #[pyfunction]
 pub fn model_file_from_json<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {

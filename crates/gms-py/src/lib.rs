@@ -34,6 +34,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_ELEMENTS", gms_dyn::MAX_ELEMENTS)?;
     m.add("MAX_ITERATIONS", gms_core::MAX_ITERATIONS)?;
+    // The model file's format and the version it is written in: gms-file's, its one owner.
+    m.add("MODEL_FILE_FORMAT", gms_file::FORMAT)?;
+    m.add("MODEL_FILE_VERSION", gms_file::VERSION)?;
     m.add_function(wrap_pyfunction!(params::check_params, m)?)?;
     m.add_function(wrap_pyfunction!(slip::slip_responses, m)?)?;
     m.add_function(wrap_pyfunction!(fit::sensitivities, m)?)?;

@@ -12,8 +12,10 @@ it and by :func:`leuven_rt.predict` (and a compensator fed the same signal):
   low-pass at ``cutoff`` Hz), each step's velocity being the difference of two samples over dt.
 
 The acceleration (for a measured inertia) is the central difference of the velocity through a
-zero-phase low-pass at the lower of ``cutoff`` and a tenth of the Nyquist frequency: a raw
-encoder's second difference is noise.
+zero-phase low-pass at ``acceleration_cutoff`` Hz, or where the reconstruction gives none, at the
+lower of ``cutoff`` and a tenth of the Nyquist frequency: a coarse encoder's second difference is
+noise, while a fine one's at a high rate holds the quick accelerations of a closed loop that a
+tenth of the Nyquist frequency takes away (the fit chooses, :mod:`leuven_rt.fitting.select`).
 
 It also finds where a log cannot tell the direction of motion: without a velocity column, the
 motion reverses somewhere between the last encoder count in the old direction and the first in
@@ -40,7 +42,8 @@ from .signals import check_cutoff, lowpass, robust_spread
 SPURIOUS = 4
 #: ... and whose noise exceeds this many counts.
 NOISE_COUNTS = 2.0
-#: The acceleration's cutoff is at most this share of the Nyquist frequency.
+#: The acceleration's cutoff is at most this share of the Nyquist frequency, where the
+#: reconstruction gives none of its own.
 ACCELERATION_CUTOFF = 0.1
 
 
@@ -52,10 +55,14 @@ def describe(reconstruction: Reconstruction) -> str:
             if reconstruction.cutoff is None
             else f"through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
         )
-        return f"the logged velocity, {how}"
-    if reconstruction.cutoff is None:
-        return "the encoder position, raw (differences of consecutive samples)"
-    return f"the encoder position through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+        text = f"the logged velocity, {how}"
+    elif reconstruction.cutoff is None:
+        text = "the encoder position, raw (differences of consecutive samples)"
+    else:
+        text = f"the encoder position through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
+    if reconstruction.acceleration_cutoff is not None:
+        text += f", its acceleration through one at {reconstruction.acceleration_cutoff:.4g} Hz"
+    return text
 
 
 @dataclass(frozen=True, eq=False)
@@ -89,6 +96,8 @@ def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
     if cutoff is not None:
         cutoff = check_cutoff(cutoff, dt, data.t.size)
     slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
+    if reconstruction.acceleration_cutoff is not None:
+        slow = check_cutoff(reconstruction.acceleration_cutoff, dt, data.t.size)
     if reconstruction.source == "velocity":
         if data.v is None:
             raise DataError(

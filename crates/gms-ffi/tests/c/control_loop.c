@@ -505,8 +505,8 @@ static void levels(const char *folder) {
         const char *json_ = edited(text, sizeof text, from, to);                             \
         EXPECT(name, leuven_rt_compensator_create_from_json(json_, strlen(json_), DT, 0, &c, &error)); \
     } while (0)
-    MODEL_EXPECT("model_version_3", "\"version\": 1", "\"version\": 3");
-    printf("value model_version_named %d\n", strstr(error.message, "`version` is 3") != NULL &&
+    MODEL_EXPECT("model_version_4", "\"version\": 1", "\"version\": 4");
+    printf("value model_version_named %d\n", strstr(error.message, "`version` is 4") != NULL &&
                                                  strstr(error.message, "upgrade leuven-rt") != NULL);
     MODEL_EXPECT("model_version_missing", "\"version\": 1,", "");
     MODEL_EXPECT("model_format_other", "leuven-rt model", "leuven-rt params");
