@@ -43,11 +43,11 @@ __all__ = [
 __version__: str
 MAX_ELEMENTS: int
 MAX_ITERATIONS: int
-MODEL_FILE_FORMAT: str
-MODEL_FILE_VERSION: int
 MAX_RIPPLES: int
 MAX_HARMONICS: int
 ERROR_KINDS: list[str]
+MODEL_FILE_FORMAT: str
+MODEL_FILE_VERSION: int
 
 _Scheme = Literal["implicit", "explicit"]
 _Mode = Literal["feedforward", "observer"]

@@ -308,7 +308,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     predict.add_argument(
         "--cutoff",
         type=float,
-        help="the low-pass cutoff [Hz] of the motion signal, in place of the model file's reconstruction",
+        help="the low-pass cutoff [Hz] of the motion signal, in place of the model file's "
+        "(its acceleration's own cutoff is kept)",
     )
     predict.add_argument(
         "--plot", help="also draw the measured and predicted force here (.png, .pdf, .svg, …)"

@@ -128,8 +128,8 @@ def effective_reconstruction(
 ) -> tuple[Reconstruction, tuple[str, ...]]:
     """The reconstruction ``predict`` drives ``model`` with on ``record``: the file's (version 1:
     the position at a tenth of the Nyquist frequency), its cutoff replaced by ``cutoff`` when
-    given, the raw position where the file wants a velocity the log lacks (with a note); the
-    file's acceleration cutoff kept in both."""
+    given (the file's acceleration cutoff kept), the raw position where the file wants a velocity
+    the log lacks (with a note)."""
     notes: tuple[str, ...] = ()
     chosen = model.reconstruction
     if chosen is None:
@@ -137,7 +137,9 @@ def effective_reconstruction(
     if chosen.source == "velocity" and record.v is None:
         notes = ("the model was identified on a logged velocity, and this log has no `v` column: "
                  "it is driven by the raw position",)  # fmt: skip
-        chosen = replace(chosen, source="position", cutoff=None)
+        # The acceleration's cutoff was chosen for the velocity's one difference, not the raw
+        # position's two: the default's.
+        chosen = Reconstruction("position")
     if cutoff is not None:
         chosen = replace(chosen, cutoff=check_cutoff(cutoff, record.dt, record.t.size))
     return chosen, notes

@@ -111,6 +111,16 @@ def test_the_acceleration_comes_through_the_file_s_own_cutoff(synthetic: Synthet
     replaced = predict(own, data, cutoff=0.2 * 0.5 / dt)
     assert replaced.reconstruction == Reconstruction("position", 0.2 * 0.5 / dt, acceleration_cutoff=cutoff)
     assert replaced.to_dict()["reconstruction"]["acceleration_cutoff"] == cutoff
+    # A velocity's acceleration cutoff is not the raw position's: a log without `v` takes the
+    # default.
+    logged = replace(own, reconstruction=Reconstruction("velocity", acceleration_cutoff=cutoff))
+    fallback = predict(logged, data)
+    assert fallback.reconstruction == Reconstruction("position") and fallback.notes
+    # A file's own cutoff that this log's rate does not support is refused by its name.
+    beyond = replace(own, reconstruction=Reconstruction("position", acceleration_cutoff=0.6 / dt))
+    with pytest.raises(DataError, match=r"^`reconstruction.acceleration_cutoff` must be below") as caught:
+        predict(beyond, data)
+    assert (caught.value.kind, caught.value.field) == ("out_of_range", "reconstruction.acceleration_cutoff")
 
 
 def test_the_model_file_s_position_force_is_added(synthetic: SyntheticData) -> None:

@@ -5,6 +5,7 @@ missed by 5 times the noise."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import leuven_rt as lr
 from conftest import family
@@ -79,8 +80,8 @@ def test_the_acceleration_s_own_cutoff_is_taken_where_it_predicts_better() -> No
     record = MotionData(log.t, log.x, log.f)
     found = lr.identify(record)
     reconstruction = found.model.reconstruction
-    assert reconstruction is not None and reconstruction.acceleration_cutoff is not None
-    assert reconstruction.acceleration_cutoff > 0.1 * 0.5 / record.dt
+    assert reconstruction is not None
+    assert reconstruction.acceleration_cutoff == pytest.approx(0.8 * 0.5 / record.dt)
     prediction = lr.predict(found.model, record)
     assert prediction.reconstruction == reconstruction
     assert prediction.rms < 1.2 * log.floor_rms

@@ -158,28 +158,29 @@ impl ModelFile {
                 });
             }
         }
-        if let Some(cutoff) = self.reconstruction.and_then(|r| r.cutoff) {
-            if !(cutoff.is_finite() && cutoff > 0.0) {
-                return Err(FileError::Invalid {
-                    key: "reconstruction.cutoff".to_owned(),
-                    rule: "not_positive",
-                    message: format!(
-                        "must be finite and > 0 [Hz] (or null for the signal as logged), got {}",
-                        gms_core::Shown(cutoff)
-                    ),
-                });
-            }
-        }
-        if let Some(cutoff) = self.reconstruction.and_then(|r| r.acceleration_cutoff) {
-            if !(cutoff.is_finite() && cutoff > 0.0) {
-                return Err(FileError::Invalid {
-                    key: "reconstruction.acceleration_cutoff".to_owned(),
-                    rule: "not_positive",
-                    message: format!(
-                        "must be finite and > 0 [Hz] (or absent for the default), got {}",
-                        gms_core::Shown(cutoff)
-                    ),
-                });
+        if let Some(reconstruction) = self.reconstruction {
+            for (key, cutoff, otherwise) in [
+                (
+                    "reconstruction.cutoff",
+                    reconstruction.cutoff,
+                    "null for the signal as logged",
+                ),
+                (
+                    "reconstruction.acceleration_cutoff",
+                    reconstruction.acceleration_cutoff,
+                    "absent for the default",
+                ),
+            ] {
+                if let Some(cutoff) = cutoff.filter(|c| !(c.is_finite() && *c > 0.0)) {
+                    return Err(FileError::Invalid {
+                        key: key.to_owned(),
+                        rule: "not_positive",
+                        message: format!(
+                            "must be finite and > 0 [Hz] (or {otherwise}), got {}",
+                            gms_core::Shown(cutoff)
+                        ),
+                    });
+                }
             }
         }
         Ok(Model {

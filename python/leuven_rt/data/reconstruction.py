@@ -61,7 +61,9 @@ def describe(reconstruction: Reconstruction) -> str:
     else:
         text = f"the encoder position through a zero-phase low-pass at {reconstruction.cutoff:.4g} Hz"
     if reconstruction.acceleration_cutoff is not None:
-        text += f", its acceleration through one at {reconstruction.acceleration_cutoff:.4g} Hz"
+        text += (
+            f"; its acceleration through a zero-phase low-pass at {reconstruction.acceleration_cutoff:.4g} Hz"
+        )
     return text
 
 
@@ -97,7 +99,10 @@ def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
         cutoff = check_cutoff(cutoff, dt, data.t.size)
     slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
     if reconstruction.acceleration_cutoff is not None:
-        slow = check_cutoff(reconstruction.acceleration_cutoff, dt, data.t.size)
+        # A file's own cutoff, identified on a log at another rate, may be beyond this one's.
+        slow = check_cutoff(
+            reconstruction.acceleration_cutoff, dt, data.t.size, "reconstruction.acceleration_cutoff"
+        )
     if reconstruction.source == "velocity":
         if data.v is None:
             raise DataError(

@@ -35,19 +35,19 @@ class Derivatives:
     cutoff: float
 
 
-def check_cutoff(cutoff: object, dt: float, samples: int) -> float:
+def check_cutoff(cutoff: object, dt: float, samples: int, name: str = "cutoff") -> float:
     """``cutoff`` [Hz] as a float, if a record of ``samples`` samples at step ``dt`` supports it:
     below the Nyquist frequency 0.5/dt, and at least :data:`MIN_CUTOFF_PERIODS` periods of it
     in the record's ``samples·dt`` seconds. Every cutoff given to a filter passes here;
-    :class:`DataError` otherwise, with the bound."""
-    value = real_number(cutoff, "cutoff", DataError)
+    :class:`DataError` otherwise, with the bound, naming the cutoff ``name``."""
+    value = real_number(cutoff, name, DataError)
     nyquist = 0.5 / dt
     if not value < nyquist:  # NaN too
         raise DataError(
-            f"`cutoff` must be below {nyquist:g} Hz (the Nyquist frequency of a {dt:g} s step), "
+            f"`{name}` must be below {nyquist:g} Hz (the Nyquist frequency of a {dt:g} s step), "
             f"got {value!r} Hz",
             kind="out_of_range",
-            field="cutoff",
+            field=name,
             value=value,
             bound=nyquist,
         )
@@ -55,11 +55,11 @@ def check_cutoff(cutoff: object, dt: float, samples: int) -> float:
     lowest = MIN_CUTOFF_PERIODS / duration
     if not value >= lowest:
         raise DataError(
-            f"`cutoff` must be at least {lowest:.3g} Hz for a record of {duration:g} s ({samples} samples): "
+            f"`{name}` must be at least {lowest:.3g} Hz for a record of {duration:g} s ({samples} samples): "
             f"the record must hold {MIN_CUTOFF_PERIODS} periods of the cutoff for the filter's transients "
             f"at its ends to die out, got {value!r} Hz",
             kind="out_of_range",
-            field="cutoff",
+            field=name,
             value=value,
             bound=lowest,
         )

@@ -122,7 +122,7 @@ class Diagnosis:
             f"the model is driven by {self.reconstruction['description']}",
             *(
                 [f"the effects were named with it driven by {self.named_under['description']}"]
-                if self.named_under != self.reconstruction
+                if _motion(self.named_under) != _motion(self.reconstruction)
                 else []
             ),
             *(
@@ -184,3 +184,9 @@ def _show(value: Any) -> str:
 
 
 __all__ = ["Diagnosis", "Step"]
+
+
+def _motion(reconstruction: dict[str, Any]) -> tuple[Any, Any]:
+    """What drives the friction model in a report's reconstruction: its source and cutoff (the
+    file's own acceleration cutoff changes only the inertia term)."""
+    return reconstruction["source"], reconstruction["cutoff"]

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import contextvars
 import dataclasses
+import functools
 import itertools
 import math
 import os
@@ -42,7 +43,6 @@ from threadpoolctl import threadpool_info, threadpool_limits  # noqa: E402
 
 from .._typing import FloatArray  # noqa: E402
 from ..data.reconstruction import (  # noqa: E402
-    ACCELERATION_CUTOFF,
     ambiguous_samples,
     before_first_count,
     describe,
@@ -253,7 +253,8 @@ def select(
     if not error > (1.0 + settings.second_look) * first.noise**2:
         # Its file cannot gain that much: no file predicts below the noise.
         return first
-    low_pass = first.file_reconstruction
+    # Named, like the first, with the default acceleration: its own cutoff is the file's choice.
+    low_pass = dataclasses.replace(first.file_reconstruction, acceleration_cutoff=None)
     if low_pass.cutoff is None:
         low_pass = Reconstruction("position", SECOND_LOOK_CUTOFF * 0.5 / record.dt)
     try:
@@ -1132,12 +1133,12 @@ def choose_reconstruction(
     best = min(range(len(prepared)), key=errors.__getitem__)
     # Then the cutoffs between the refitted ones, and last the acceleration's own (which starts
     # from the position's chosen): each read at the best θ, refitted only where it already helps.
-    for beside in (_between, lambda record, chosen: _accelerations(record, chosen, fitted.structure)):
+    for beside in (_between, functools.partial(_accelerations, structure=fitted.structure)):
         for option in beside(record, prepared[best][0]):
-            between = _option_target(record, option, noisy, sample)
-            if between is None:
+            targeted = _option_target(record, option, noisy, sample)
+            if targeted is None:
                 continue
-            _, on, scales = between
+            _, on, scales = targeted
             theta = refitted[best].theta
             force = evaluate(fitted.structure, scales, theta, on.motion, on.tau, None).force
             if not _judged_mse(force, on) < errors[best]:
@@ -1180,21 +1181,16 @@ def _between(record: MotionData, chosen: Reconstruction) -> list[Reconstruction]
 
 
 def _accelerations(record: MotionData, chosen: Reconstruction, structure: Structure) -> list[Reconstruction]:
-    """``chosen`` with the acceleration's own cutoffs of :data:`ACCELERATIONS` above its default
-    (the lower of its cutoff and a tenth of the Nyquist frequency), where ``structure`` holds an
-    inertia. A closed loop at a high rate with a fine encoder accelerates faster than the default
-    follows: the family's held_24 of seed base 13000 (a PID loop at 1 kHz, 5 nm encoder, 15 kg)
-    driven by its true law gives 1.64 N at the default, 1.38 N at 0.3 of the Nyquist frequency and
-    1.15 N at 0.8, against a noise of 0.79 N."""
+    """``chosen`` with each of the acceleration's own cutoffs of :data:`ACCELERATIONS` (all above
+    its default, the lower of its cutoff and a tenth of the Nyquist frequency), where ``structure``
+    holds an inertia. A closed loop at a high rate with a fine encoder accelerates faster than the
+    default follows: the family's held_24 of seed base 13000 (a PID loop at 1 kHz, 5 nm encoder,
+    15 kg) driven by its true law gives 1.64 N at the default, 1.45 N at 0.2 of the Nyquist
+    frequency, 1.20 N at 0.5 and 1.15 N at 0.8, against a noise of 0.79 N."""
     if not structure.has("inertia"):
         return []
     nyquist = 0.5 / record.dt
-    default = min(chosen.cutoff if chosen.cutoff is not None else math.inf, ACCELERATION_CUTOFF * nyquist)
-    return [
-        dataclasses.replace(chosen, acceleration_cutoff=share * nyquist)
-        for share in ACCELERATIONS
-        if share * nyquist > default
-    ]
+    return [dataclasses.replace(chosen, acceleration_cutoff=share * nyquist) for share in ACCELERATIONS]
 
 
 def _file_target(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> tuple[Target, Scales]:
