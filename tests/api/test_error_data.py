@@ -33,6 +33,7 @@ from leuven_rt.errors import (
     StackOverflowError,
     data_of,
 )
+from leuven_rt.modelfile import VERSION
 
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / "python" / "leuven_rt"
@@ -458,7 +459,9 @@ PYTHON = [
         id="model-file-friction",
     ),
     pytest.param(
-        lambda: lr.ModelFile.from_dict({"format": "leuven-rt model", "version": 3, "friction": MAXWELL}),
+        lambda: lr.ModelFile.from_dict(
+            {"format": "leuven-rt model", "version": VERSION + 1, "friction": MAXWELL}
+        ),
         ModelFileError,
         {"kind": "invalid_choice", "field": "version", "line": None},
         id="version",

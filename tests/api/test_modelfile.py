@@ -16,6 +16,7 @@ import leuven_rt as lr
 from conftest import LUGRE, MAXWELL
 from leuven_rt import ModelFile, Params, PositionForce, PositionLevel, Reconstruction, Ripple
 from leuven_rt.errors import ModelFileError, OutputError, ParameterError
+from leuven_rt.modelfile import VERSION
 
 LEVEL = PositionLevel(
     middle=0.0,
@@ -130,9 +131,11 @@ def test_measurement_force() -> None:
 
 def test_load_names_the_file(tmp_path: Path) -> None:
     path = tmp_path / "model.json"
-    text = full_model().to_json().replace('"version": 3', '"version": 4')
+    text = full_model().to_json().replace(f'"version": {VERSION}', f'"version": {VERSION + 1}')
     path.write_text(text, encoding="utf-8")
-    with pytest.raises(ModelFileError, match=rf"^{path}: `version` is 4: .*upgrade leuven-rt") as caught:
+    with pytest.raises(
+        ModelFileError, match=rf"^{path}: `version` is {VERSION + 1}: .*upgrade leuven-rt"
+    ) as caught:
         ModelFile.load(path)
     assert (caught.value.kind, caught.value.field) == ("invalid_choice", "version")
     with pytest.raises(ModelFileError, match=r"cannot read .*missing\.json") as caught:

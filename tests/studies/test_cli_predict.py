@@ -19,6 +19,7 @@ from conftest import IdentifyStandIn as _Result
 from leuven_rt import ModelFile, Params, predict
 from leuven_rt.cli import main
 from leuven_rt.data.synthetic import SyntheticData, make_data
+from leuven_rt.modelfile import VERSION
 
 SHARED = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "robots"
 FRANKA = SHARED / "franka" / "case4_slow.csv"
@@ -95,7 +96,8 @@ def test_predict_refusals_are_one_line(files: dict[str, Path], tmp_path: Path,
                                        capsys: pytest.CaptureFixture[str]) -> None:  # fmt: skip
     newer = tmp_path / "newer.json"
     newer.write_text(
-        json.dumps({**ModelFile(friction=Params(**MAXWELL)).to_dict(), "version": 3}), encoding="utf-8"
+        json.dumps({**ModelFile(friction=Params(**MAXWELL)).to_dict(), "version": VERSION + 1}),
+        encoding="utf-8",
     )
     out = str(tmp_path / "p.csv")
     model, log, renamed = str(files["model"]), str(files["log"]), str(files["renamed"])
