@@ -97,8 +97,9 @@ def reconstruct(data: MotionData, reconstruction: Reconstruction) -> Motion:
     cutoff = reconstruction.cutoff
     if cutoff is not None:
         cutoff = check_cutoff(cutoff, dt, data.t.size)
-    slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
-    if reconstruction.acceleration_cutoff is not None:
+    if reconstruction.acceleration_cutoff is None:
+        slow = min(cutoff if cutoff is not None else math.inf, ACCELERATION_CUTOFF * 0.5 / dt)
+    else:
         # A file's own cutoff, identified on a log at another rate, may be beyond this one's.
         slow = check_cutoff(
             reconstruction.acceleration_cutoff, dt, data.t.size, "reconstruction.acceleration_cutoff"

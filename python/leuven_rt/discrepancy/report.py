@@ -183,10 +183,10 @@ def _show(value: Any) -> str:
     return str(value)
 
 
-__all__ = ["Diagnosis", "Step"]
-
-
 def _motion(reconstruction: dict[str, Any]) -> tuple[Any, Any]:
     """What drives the friction model in a report's reconstruction: its source and cutoff (the
     file's own acceleration cutoff changes only the inertia term)."""
     return reconstruction["source"], reconstruction["cutoff"]
+
+
+__all__ = ["Diagnosis", "Step"]
