@@ -58,18 +58,31 @@ def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apar
 ) -> None:
     """An offset smaller than both levels is held as well by levels of their own for −x: the
     report gives what the asymmetry gains in the offset's place, and the story says the log does
-    not tell the two apart."""
+    not tell the two apart by their fit, and what the asymmetry as one factor on every −x level
+    gains over the offset (it scales the −x viscous slope, which the offset leaves alone)."""
     diagnosis = offset_named
     assert diagnosis.named_effects == ["offset"]
     [pair] = json.loads(diagnosis.to_json())["stand_ins"]
-    assert set(pair) == {"named", "stand_in", "gain"}
+    assert set(pair) == {"named", "stand_in", "gain", "factor"}
     assert (pair["named"], pair["stand_in"]) == ("offset", "asymmetry")
     assert abs(pair["gain"]) < 0.01
+    assert pair["factor"] < -0.01
     told = "`asymmetry` in place of `offset`: gains 0.00 units of max(σ², floor²), an effect counts above 0.5"
-    assert f"{told}: this log does not tell the two apart" in diagnosis.story().splitlines()
+    one = "the asymmetry as one factor on every -x level"
+    factor = f"the offset fits {-pair['factor']:.2f} units better than {one}"
+    assert (
+        f"{told}: this log does not tell the two apart by their fit; {factor}"
+        in diagnosis.story().splitlines()
+    )
 
-    def told(gain: float) -> str:
-        return dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": gain}]).story()
+    def told(gain: float, factor: float | None = None) -> str:
+        return dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": gain, "factor": factor}]).story()
+
+    assert (
+        "does not tell the two apart by their fit; the asymmetry as one factor on every -x level fits "
+        "0.25 units better than the offset" in told(0.0, 0.25)
+    )
+    assert "does not tell the two apart\n" in told(0.0) + "\n"
 
     assert "in place of `offset`: gains 0.00 units" in told(-0.001)  # never "-0.00"
     assert (

@@ -122,7 +122,11 @@ def test_an_exchange_that_gains_less_than_the_threshold_is_not_taken() -> None:
 
     kept, kept_steps, stand_ins = exchanged(1.01 * gain)
     assert kept is final and kept_steps is steps
-    assert stand_ins == [select.StandIn("offset", "asymmetry", gain)]
+    # The −x level lower and its viscous slope steeper: no one factor on the −x levels gives
+    # that, and it fits worse than the offset, which stays.
+    [pair] = stand_ins
+    assert pair == select.StandIn("offset", "asymmetry", gain, pair.factor)
+    assert pair.factor is not None and pair.factor < 0.0
     taken, _, _ = exchanged(0.99 * gain)
     assert taken.structure == BASE.with_effect("asymmetry")
 
@@ -144,6 +148,84 @@ def test_an_offset_within_both_levels_and_its_asymmetry_are_not_told_apart() -> 
     structure = final.structure.without("offset").with_effect("asymmetry")
     held = fit(structure, scales, target, select._held(final, structure, scales), select.SCREEN)
     assert (final.mse - held.mse) / UNIT < -settings.significance
+
+
+def named_on(
+    record: MotionData, effect: str, structure: Structure
+) -> tuple[Fitted, Fitted, list[Step], Target, Scales]:
+    """As :func:`named`, from a baseline of ``structure`` (fitted from the Coulomb–viscous one)."""
+    target, scales = prepared(record)
+    target = dataclasses.replace(target, scale=ROBUST * NOISE)
+    base = fit(BASE, scales, target, {"Fc": 1.0, "sigma2": 1.0})
+    base = fit(structure, scales, target, base.theta)
+    final = fit(structure.with_effect(effect), scales, target, base.theta)
+    return base, final, [Step(effect, base, final)], target, scales
+
+
+def factored(factor: float) -> lr.Params:
+    """:data:`STRIBECK` with every −x level and its viscous coefficient ``factor`` times the +x ones."""
+    return dataclasses.replace(STRIBECK, Fc_neg=factor * STRIBECK.Fc, Fs_neg=factor * STRIBECK.Fs,
+                               sigma2_neg=factor * STRIBECK.sigma2)  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("truth", "offset", "wrong", "right"),
+    [
+        # Every −x level 0.8 times the +x one: the full asymmetry gains 0.23 units over the offset.
+        (factored(0.8), 0.0, "offset", "asymmetry"),
+        # An offset within both levels, which the asymmetry's −x levels hold as well as it does.
+        (STRIBECK, 0.3, "asymmetry", "offset"),
+    ],
+)
+def test_where_the_fit_does_not_tell_the_pair_apart_one_factor_on_the_minus_x_levels_does(
+    truth: lr.Params, offset: float, wrong: str, right: str
+) -> None:
+    """An offset adds the same force at every speed; an asymmetry whose −x levels are one factor
+    times the +x ones scales the −x viscous slope and Stribeck rise with them."""
+    structure = BASE.with_effect("stribeck")
+    base, final, steps, target, scales = named_on(log(truth, offset=offset), wrong, structure)
+    settings = Settings()
+    swapped = select._in_place(final, wrong, right, scales, target)
+    assert abs(final.mse - swapped.mse) < settings.significance * UNIT
+    said: list[str] = []
+    exchanged, regrown, stand_ins = select._exchange(
+        base, final, steps, scales, target, settings, UNIT, said.append
+    )
+    assert exchanged.structure == structure.with_effect(right)
+    assert [step.effect for step in regrown] == [right]
+    assert len(said) == 1 and said[0].startswith(f"{right} in place of {wrong}")
+    [pair] = stand_ins
+    assert (pair.named, pair.stand_in) == (right, wrong)
+    assert pair.factor is not None and abs(pair.factor) > select.TIE
+    assert (pair.factor > 0) == (right == "asymmetry")
+
+
+def test_an_asymmetry_the_offset_does_not_hold_stays_where_one_factor_fits_worse_still() -> None:
+    """The −x level lower and its viscous slope steeper: the offset in the asymmetry's place does
+    far worse, and one factor on the −x levels worse still; the named asymmetry stays."""
+    base, final, steps, target, scales = named(log(ASYMMETRIC), "asymmetry")
+    settings = Settings()
+    exchanged, kept_steps, stand_ins = select._exchange(
+        base, final, steps, scales, target, settings, UNIT, lambda _: None
+    )
+    assert exchanged is final and kept_steps is steps
+    [pair] = stand_ins
+    assert (pair.named, pair.stand_in) == ("asymmetry", "offset")
+    assert pair.gain < -settings.significance
+    assert pair.factor is not None and pair.factor < -select.TIE
+
+
+def test_without_a_viscous_slope_or_stribeck_rise_one_factor_does_not_tell_the_pair_apart() -> None:
+    """The −x levels one factor times the +x ones, or shifted by an offset: with no viscous slope
+    and no Stribeck rise to scale, the two give the same force, and the offset named stays."""
+    truth = dataclasses.replace(SYMMETRIC, sigma2=0.0)
+    base, final, steps, target, scales = named(log(truth, offset=0.3), "offset")
+    exchanged, kept_steps, stand_ins = select._exchange(
+        base, final, steps, scales, target, Settings(), UNIT, lambda _: None
+    )
+    assert exchanged is final and kept_steps is steps
+    [pair] = stand_ins
+    assert pair.factor is not None and abs(pair.factor) < select.TIE
 
 
 def test_no_stand_in_is_tried_where_both_are_named() -> None:

@@ -39,13 +39,31 @@ def theta_of(structure: Structure, rng: np.random.Generator) -> dict[str, float]
     return out
 
 
-@pytest.mark.parametrize("effects", [("coulomb", "viscous"), ("coulomb", "viscous", "stribeck", "asymmetry"),
-                                     CATALOGUE])  # fmt: skip
-def test_the_friction_derivatives_equal_finite_differences_of_unpack(effects: tuple[str, ...]) -> None:
-    structure = Structure(frozenset(effects), form="force", periods=(0.01,))
-    rng = np.random.default_rng(1)
+@pytest.mark.parametrize(
+    ("effects", "neg_factor", "seed"),
+    [
+        (("coulomb", "viscous"), False, 1),
+        (("coulomb", "viscous", "stribeck", "asymmetry"), False, 1),
+        (CATALOGUE, False, 1),
+        # The asymmetry as one factor, the −x static level above the +x one (seed 1) and below
+        # it (seed 3), with the bank and with the stiff element alone.
+        (("coulomb", "viscous", "stribeck", "asymmetry", "presliding_hysteresis"), True, 1),
+        (("coulomb", "viscous", "stribeck", "asymmetry", "presliding_hysteresis"), True, 3),
+        (("coulomb", "viscous", "stribeck", "asymmetry"), True, 1),
+        (("coulomb", "viscous", "stribeck", "asymmetry"), True, 3),
+    ],
+)
+def test_the_friction_derivatives_equal_finite_differences_of_unpack(
+    effects: tuple[str, ...], neg_factor: bool, seed: int
+) -> None:
+    structure = Structure(frozenset(effects), form="force", periods=(0.01,), neg_factor=neg_factor)
+    rng = np.random.default_rng(seed)
     theta = theta_of(structure, rng)
     values = unpack(structure, SCALES, theta)
+    if neg_factor:
+        factor = math.exp(theta["log_neg_factor"])
+        assert values.friction["Fs_neg"] == pytest.approx(factor * values.friction["Fs"])
+        assert values.friction["sigma2_neg"] == pytest.approx(factor * values.friction["sigma2"])
 
     def vector(t: dict[str, float]) -> np.ndarray:
         v = unpack(structure, SCALES, t)

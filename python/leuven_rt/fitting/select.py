@@ -63,7 +63,7 @@ from .periods import REFINE, find_period  # noqa: E402
 from .sample import SEGMENTS, Sample, segments  # noqa: E402
 from .settings import Settings  # noqa: E402
 from .solve import Fitted, Target, fit  # noqa: E402
-from .structure import CATALOGUE, Scales, Structure  # noqa: E402
+from .structure import CATALOGUE, NEG_FACTOR, Scales, Structure  # noqa: E402
 
 #: Iterations of a candidate while it is screened (the chosen one is fitted to convergence), and
 #: of the written file's robust refit from its plain fit (:func:`_robustly`).
@@ -98,6 +98,11 @@ SECOND_LOOK_CUTOFF = 0.1
 #: Effects that can stand in for each other: an offset and a −x level of its own both shift the
 #: level of one direction of motion against the other's.
 STAND_INS = (("offset", "asymmetry"),)
+#: Where neither of the pair gains ``significance`` units in the other's place, the asymmetry as
+#: one factor on every −x level and the offset (one parameter each) are fitted in the named one's
+#: place, and the better decides, when it gains more than this many units (the report's last digit:
+#: below it the two fit alike, as they do on a model without a viscous or Stribeck term).
+TIE = 0.01
 #: Effects whose shape is found in what the current model leaves (the position dependence's form
 #: and ripple period): before the backward round takes one out, it is found anew.
 REFOUND = ("position_dependence",)
@@ -133,11 +138,15 @@ class StandIn:
     gains over the final model in units (negative: it does worse). Within ``significance`` units
     either way, the log does not tell the two apart. Where the two were exchanged, the one
     replaced against the converged fit of the other (the progress line's gain is the other's
-    screened fit against the one replaced)."""
+    screened fit against the one replaced). ``factor``: where neither gained the threshold over
+    the other, what the asymmetry as one factor on every −x level gains over the offset, both in
+    the named one's place (negative: the offset fits better; None where not fitted), which
+    decides between the two when it exceeds :data:`TIE` units, one-sided."""
 
     named: str
     stand_in: str
     gain: float
+    factor: float | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -682,31 +691,114 @@ def _exchange(
     unit: float,
     say: Progress,
 ) -> tuple[Fitted, list[Step], list[StandIn]]:
-    """``final`` with a named effect replaced by its stand-in (:data:`STAND_INS`) where the
-    exchange gains more than the threshold, its steps, and each named effect of a pair with what
-    its stand-in gains in its place (:class:`StandIn`). Once one of the pair is in, the other
-    added on top of it starts in a flat valley (both shift one direction's level against the
-    other's) that a screened fit does not leave, so the better of the two is found by trying it
-    in the other's place (:func:`_in_place`)."""
+    """``final`` with a named effect replaced by its stand-in (:data:`STAND_INS`) where the log
+    shows the stand-in, its steps, and each named effect of a pair with what its stand-in gains in
+    its place (:class:`StandIn`). Once one of the pair is in, the other added on top of it starts
+    in a flat valley (both shift one direction's level against the other's) that a screened fit
+    does not leave, so the better of the two is found by trying it in the other's place
+    (:func:`_in_place`).
+
+    The stand-in replaces the named one when it gains ``significance`` units, one-sided. Where
+    neither does, the offset and the asymmetry as one factor on every −x level (one parameter
+    each, :func:`_factored`) are fitted in the named one's place, and the better decides when it
+    gains :data:`TIE` units, one-sided: levels of their own for −x hold any offset smaller than
+    both, so the full asymmetry's three parameters fit an offset as well as the offset does, and
+    the choice fell to whichever a round named first. An offset adds the same force at every
+    speed; a factor scales the −x viscous slope and Stribeck rise with the level."""
     added = [step.effect for step in steps]
     stand_ins: list[StandIn] = []
+    threshold, tie = settings.significance * unit, TIE * unit
     for pair in STAND_INS:
         for named, other in (pair, pair[::-1]):
             if named not in added or final.structure.has(other):
                 continue
             swapped = _in_place(final, named, other, scales, target)
             gain = (final.mse - swapped.mse) / unit
-            if not _significant(final, swapped, target, settings.significance * unit, settings):
-                stand_ins.append(StandIn(named, other, gain))
-                continue
-            say(f"{other} in place of {named}: gains {gain:.2f} units")
+            factor: float | None = None
+            if _significant(final, swapped, target, threshold, settings):
+                say(f"{other} in place of {named}: gains {gain:.2f} units")
+            else:
+                pair_fits = _offset_and_factor(final, named, swapped, scales, target)
+                if pair_fits is None:
+                    stand_ins.append(StandIn(named, other, gain))
+                    continue
+                offset, factored = pair_fits
+                factor = (offset.mse - factored.mse) / unit
+                if named == "offset" and _significant(offset, factored, target, tie, settings):
+                    levels = fit(swapped.structure, scales, target, _levels_of(factored), SCREEN)
+                    swapped = levels if levels.mse < swapped.mse else swapped
+                    why = f"as one -x factor it fits {factor:.2f} units better than the offset"
+                elif (
+                    named == "asymmetry"
+                    and _significant(factored, offset, target, tie, settings)
+                    and not _significant(offset, final, target, threshold, settings)
+                ):
+                    swapped = offset
+                    why = f"it fits {-factor:.2f} units better than the asymmetry as one -x factor"
+                else:
+                    stand_ins.append(StandIn(named, other, gain, factor))
+                    continue
+                say(f"{other} in place of {named}: {why}")
             replaced = final
             final = fit(swapped.structure, scales, target, swapped.theta)
             added[added.index(named)] = other
             steps = _regrow(base, final, added, scales, target)
-            stand_ins.append(StandIn(other, named, (final.mse - replaced.mse) / unit))
+            stand_ins.append(StandIn(other, named, (final.mse - replaced.mse) / unit, factor))
             break  # not back again in the same pass
     return final, steps, stand_ins
+
+
+def _offset_and_factor(
+    final: Fitted, named: str, swapped: Fitted, scales: Scales, target: Target
+) -> tuple[Fitted, Fitted] | None:
+    """The offset and the asymmetry as one factor on every −x level in the place of ``named``
+    (one of the two, in ``final``; ``swapped``: the other screened there), each fitted; None
+    where the model has no +x Coulomb level to scale."""
+    factored = _factored(final, named, scales, target)
+    if factored is None:
+        return None
+    offset = final if named == "offset" else fit(swapped.structure, scales, target, swapped.theta)
+    return offset, factored
+
+
+def _factored(final: Fitted, named: str, scales: Scales, target: Target) -> Fitted | None:
+    """``final`` with the asymmetry as one factor on every −x level in ``named``'s place (an
+    offset, or the asymmetry's levels of their own), fitted; None where the model has no +x
+    Coulomb level to scale. From an offset o it starts at the levels Fc + o for +x and the factor
+    (Fc − o)/(Fc + o), the same force while the axis slides at Coulomb level, and also at the
+    model without the offset, the better screened start kept."""
+    theta = final.theta
+    if "Fc" not in theta:
+        return None
+    structure = dataclasses.replace(final.structure.without(named).with_effect("asymmetry"), neg_factor=True)
+    held = _held(final, structure, scales)
+    if named == "offset":
+        starts = [held]
+        fc, o = theta["Fc"], theta["offset"]
+        if fc + o > 0.0 and fc - o > 0.0:
+            starts.append({**held, "Fc": fc + o, "log_neg_factor": _log_factor((fc - o) / (fc + o))})
+    else:
+        starts = [{**held, "log_neg_factor": _log_factor(theta["Fc_neg"] / theta["Fc"])}]
+    screened = min((fit(structure, scales, target, start, SCREEN) for start in starts), key=lambda f: f.mse)
+    return fit(structure, scales, target, screened.theta)
+
+
+def _log_factor(factor: float) -> float:
+    bound = math.log(NEG_FACTOR)
+    return min(max(math.log(factor), -bound), bound)
+
+
+def _levels_of(factored: Fitted) -> dict[str, float]:
+    """θ of the asymmetry with levels of its own for −x at the same model as ``factored`` (the
+    asymmetry as one factor): Fc_neg = k·Fc, the −x rise k times the +x one, σ2_neg = k·σ2."""
+    theta = dict(factored.theta)
+    factor = math.exp(theta.pop("log_neg_factor"))
+    theta["Fc_neg"] = factor * theta["Fc"]
+    if "Fs_rise" in theta:
+        theta["Fs_neg_rise"] = factor * theta["Fs_rise"]
+    if "sigma2" in theta:
+        theta["sigma2_neg"] = factor * theta["sigma2"]
+    return theta
 
 
 def _in_place(final: Fitted, named: str, other: str, scales: Scales, target: Target) -> Fitted:

@@ -11,6 +11,7 @@ coordinates that keep every candidate inside the model's rules with simple bound
 | ``viscous`` | ``sigma2`` | σ2 |
 | ``stribeck`` | ``Fs_rise``, ``log_Vs``, ``delta`` | Fs = Fc + Fs_rise, Vs = exp(log_Vs), δ |
 | ``asymmetry`` | ``Fc_neg``, ``Fs_neg_rise``, ``sigma2_neg`` | the −x levels and viscous coefficient |
+| ``asymmetry`` as one factor | ``log_neg_factor`` | every −x level and σ2 the +x one times the factor |
 | ``presliding_hysteresis`` | ``log_margin``, ``n``, ``sigma1``, shares | W over a grid of Δ, n, σ1 |
 | ``position_dependence`` | ``level_*`` or ``force_*`` | the trend and ripples |
 | ``offset``, ``inertia`` | ``offset``, ``inertia`` | the measurement terms |
@@ -56,6 +57,8 @@ FRICTION = ("Fc", "Fs", "Vs", "delta", "n", "sigma1", "sigma2", "Fc_neg", "Fs_ne
 STIFF_MARGIN = 2.0
 #: Harmonics of each ripple period.
 HARMONICS = 3
+#: The asymmetry's one factor on the −x levels stays within 1/NEG_FACTOR … NEG_FACTOR.
+NEG_FACTOR = 20.0
 
 
 def parse_effects(names: str | Sequence[str], argument: str = "baseline") -> tuple[str, ...]:
@@ -99,6 +102,10 @@ class Structure:
     periods: tuple[float, ...] = ()
     trend: bool = True
     drift: bool = False
+    neg_factor: bool = False
+    """The asymmetry as one factor on every −x level and viscous coefficient (one parameter, as
+    an offset is), not levels of their own: a candidate the stand-ins are judged with
+    (:func:`leuven_rt.fitting.select._exchange`), never a written file's."""
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
@@ -113,6 +120,8 @@ class Structure:
     def without(self, effect: str) -> Structure:
         if effect == "position_dependence":
             return replace(self, effects=self.effects - {effect}, form=None, periods=())
+        if effect == "asymmetry":
+            return replace(self, effects=self.effects - {effect}, neg_factor=False)
         return replace(self, effects=self.effects - {effect})
 
     def with_drift(self, drift: bool = True) -> Structure:
@@ -127,7 +136,9 @@ class Structure:
             names.append("sigma2")
         if self.has("stribeck"):
             names += ["Fs_rise", "log_Vs", "delta"]
-        if self.has("asymmetry"):
+        if self.has("asymmetry") and self.neg_factor:
+            names.append("log_neg_factor")
+        elif self.has("asymmetry"):
             names.append("Fc_neg")
             if self.has("stribeck"):
                 names.append("Fs_neg_rise")
@@ -211,6 +222,8 @@ def bounds(structure: Structure, scales: Scales, elements: int) -> tuple[FloatAr
             lo, hi = 0.0, math.inf
         elif name == "log_Vs":
             lo, hi = math.log(scales.speed_low), math.log(scales.speed_high)
+        elif name == "log_neg_factor":
+            lo, hi = -math.log(NEG_FACTOR), math.log(NEG_FACTOR)
         elif name == "delta":
             lo, hi = 0.5, 4.0
         elif name == "n":
@@ -287,21 +300,38 @@ def unpack(structure: Structure, scales: Scales, theta: Mapping[str, float]) -> 
     delta = theta.get("delta", 2.0)
     sigma2 = theta.get("sigma2", 0.0)
     asymmetric = structure.has("asymmetry")
-    fc_neg = theta["Fc_neg"] if asymmetric else fc
-    fs_neg = fc_neg + theta.get("Fs_neg_rise", 0.0) if asymmetric else fs
-    sigma2_neg = theta.get("sigma2_neg", sigma2) if asymmetric else sigma2
+    factored = asymmetric and structure.neg_factor
+    if factored:
+        factor = math.exp(theta["log_neg_factor"])
+        fc_neg, fs_neg, sigma2_neg = factor * fc, factor * fs, factor * sigma2
+    else:
+        factor = 1.0
+        fc_neg = theta["Fc_neg"] if asymmetric else fc
+        fs_neg = fc_neg + theta.get("Fs_neg_rise", 0.0) if asymmetric else fs
+        sigma2_neg = theta.get("sigma2_neg", sigma2) if asymmetric else sigma2
     for side, suffix in (("", ""), ("_neg", "_neg")):
-        # A symmetric model's −x parameters are the +x ones: their columns add to the same θ.
-        source = suffix if asymmetric else ""
-        depends("Fc" + side, "Fc" + source)
-        depends("Fs" + side, "Fc" + source)
-        depends("Fs" + side, "Fs" + (source + "_rise" if source else "_rise"))
-        depends("sigma2" + side, "sigma2" + source)
+        # A symmetric model's −x parameters are the +x ones: their columns add to the same θ; a
+        # factored one's are the factor times them.
+        source = suffix if asymmetric and not factored else ""
+        scale = factor if side else 1.0
+        depends("Fc" + side, "Fc" + source, scale)
+        depends("Fs" + side, "Fc" + source, scale)
+        depends("Fs" + side, "Fs" + (source + "_rise" if source else "_rise"), scale)
+        depends("sigma2" + side, "sigma2" + source, scale)
+    if factored:
+        depends("Fc_neg", "log_neg_factor", fc_neg)
+        depends("Fs_neg", "log_neg_factor", fs_neg)
+        depends("sigma2_neg", "log_neg_factor", sigma2_neg)
     depends("Vs", "log_Vs", vs)
     depends("delta", "delta")
     top = max(fs, fs_neg)
-    # d(top)/dθ: the larger static level's θ.
-    top_theta = ("Fc_neg", "Fs_neg_rise") if asymmetric and fs_neg > fs else ("Fc", "Fs_rise")
+    # d(top)/dθ: the larger static level's.
+    if factored and fs_neg > fs:
+        top_theta = {"Fc": factor, "Fs_rise": factor, "log_neg_factor": fs_neg}
+    elif asymmetric and fs_neg > fs:
+        top_theta = {"Fc_neg": 1.0, "Fs_neg_rise": 1.0}
+    else:
+        top_theta = {"Fc": 1.0, "Fs_rise": 1.0}
     if structure.has("presliding_hysteresis"):
         shares = np.array([theta[f"share_{i}"] for i in range(elements)])
         total = max(float(shares.sum()), 1e-300)
@@ -315,16 +345,16 @@ def unpack(structure: Structure, scales: Scales, theta: Mapping[str, float]) -> 
             jac[r, index["log_margin"]] = weights[i]
             for j in range(elements):
                 jac[r, index[f"share_{j}"]] = margin * top * ((i == j) / total - shares[i] / total**2)
-            for name in top_theta:
+            for name, slope in top_theta.items():
                 if name in index:
-                    jac[r, index[name]] += weights[i] / top
+                    jac[r, index[name]] += weights[i] / top * slope
         used = deltas
     else:
         weights = np.array([STIFF_MARGIN * top])
         n = 2.0
-        for name in top_theta:
+        for name, slope in top_theta.items():
             if name in index:
-                jac[len(FRICTION), index[name]] += STIFF_MARGIN
+                jac[len(FRICTION), index[name]] += STIFF_MARGIN * slope
         used = deltas[:1]
     friction: dict[str, float | tuple[float, ...] | None] = {
         "Fc": fc, "Fs": fs, "Vs": vs, "delta": delta, "n": n, "sigma1": theta.get("sigma1", 0.0),
