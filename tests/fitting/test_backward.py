@@ -71,13 +71,18 @@ def prepared(record: MotionData) -> tuple[Target, Scales]:
     return select.prepare(record, select.rounds_reconstruction(record, noisy), noisy)
 
 
-def named(record: MotionData, effect: str) -> tuple[Fitted, Fitted, list[Step], Target, Scales]:
-    """What the forward round leaves when it names ``effect``: the baseline, the model with
-    ``effect`` fitted from it, and the step between them; counted robustly at 5 times the noise."""
+def named(
+    record: MotionData, effect: str, structure: Structure = BASE
+) -> tuple[Fitted, Fitted, list[Step], Target, Scales]:
+    """What the forward round leaves when it names ``effect`` on a model of ``structure``: that
+    model (fitted from the Coulomb–viscous one), the model with ``effect`` fitted from it, and the
+    step between them; counted robustly at 5 times the noise."""
     target, scales = prepared(record)
     target = dataclasses.replace(target, scale=ROBUST * NOISE)
     base = fit(BASE, scales, target, {"Fc": 1.0, "sigma2": 1.0})
-    final = fit(BASE.with_effect(effect), scales, target, base.theta)
+    if structure != BASE:
+        base = fit(structure, scales, target, base.theta)
+    final = fit(structure.with_effect(effect), scales, target, base.theta)
     return base, final, [Step(effect, base, final)], target, scales
 
 
@@ -150,18 +155,6 @@ def test_an_offset_within_both_levels_and_its_asymmetry_are_not_told_apart() -> 
     assert (final.mse - held.mse) / UNIT < -settings.significance
 
 
-def named_on(
-    record: MotionData, effect: str, structure: Structure
-) -> tuple[Fitted, Fitted, list[Step], Target, Scales]:
-    """As :func:`named`, from a baseline of ``structure`` (fitted from the Coulomb–viscous one)."""
-    target, scales = prepared(record)
-    target = dataclasses.replace(target, scale=ROBUST * NOISE)
-    base = fit(BASE, scales, target, {"Fc": 1.0, "sigma2": 1.0})
-    base = fit(structure, scales, target, base.theta)
-    final = fit(structure.with_effect(effect), scales, target, base.theta)
-    return base, final, [Step(effect, base, final)], target, scales
-
-
 def factored(factor: float) -> lr.Params:
     """:data:`STRIBECK` with every −x level and its viscous coefficient ``factor`` times the +x ones."""
     return dataclasses.replace(STRIBECK, Fc_neg=factor * STRIBECK.Fc, Fs_neg=factor * STRIBECK.Fs,
@@ -183,7 +176,7 @@ def test_where_the_fit_does_not_tell_the_pair_apart_one_factor_on_the_minus_x_le
     """An offset adds the same force at every speed; an asymmetry whose −x levels are one factor
     times the +x ones scales the −x viscous slope and Stribeck rise with them."""
     structure = BASE.with_effect("stribeck")
-    base, final, steps, target, scales = named_on(log(truth, offset=offset), wrong, structure)
+    base, final, steps, target, scales = named(log(truth, offset=offset), wrong, structure)
     settings = Settings()
     swapped = select._in_place(final, wrong, right, scales, target)
     assert abs(final.mse - swapped.mse) < settings.significance * UNIT

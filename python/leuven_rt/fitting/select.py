@@ -765,27 +765,22 @@ def _factored(final: Fitted, named: str, scales: Scales, target: Target) -> Fitt
     """``final`` with the asymmetry as one factor on every −x level in ``named``'s place (an
     offset, or the asymmetry's levels of their own), fitted; None where the model has no +x
     Coulomb level to scale. From an offset o it starts at the levels Fc + o for +x and the factor
-    (Fc − o)/(Fc + o), the same force while the axis slides at Coulomb level, and also at the
-    model without the offset, the better screened start kept."""
+    (Fc − o)/(Fc + o) (the offset moved into the levels, :func:`_offset_in_levels`), the same
+    force while the axis slides at Coulomb level, and also at the model without the offset, the
+    better screened start kept."""
     theta = final.theta
     if "Fc" not in theta:
         return None
     structure = dataclasses.replace(final.structure.without(named).with_effect("asymmetry"), neg_factor=True)
     held = _held(final, structure, scales)
-    if named == "offset":
-        starts = [held]
-        fc, o = theta["Fc"], theta["offset"]
-        if fc + o > 0.0 and fc - o > 0.0:
-            starts.append({**held, "Fc": fc + o, "log_neg_factor": _log_factor((fc - o) / (fc + o))})
-    else:
-        starts = [{**held, "log_neg_factor": _log_factor(theta["Fc_neg"] / theta["Fc"])}]
+    levels = _offset_in_levels(theta) if named == "offset" else theta
+    starts = [held] if named == "offset" else []
+    if levels is not None:
+        bound = math.log(NEG_FACTOR)
+        factor = min(max(math.log(levels["Fc_neg"] / levels["Fc"]), -bound), bound)
+        starts.append({**held, "Fc": levels["Fc"], "log_neg_factor": factor})
     screened = min((fit(structure, scales, target, start, SCREEN) for start in starts), key=lambda f: f.mse)
     return fit(structure, scales, target, screened.theta)
-
-
-def _log_factor(factor: float) -> float:
-    bound = math.log(NEG_FACTOR)
-    return min(max(math.log(factor), -bound), bound)
 
 
 def _levels_of(factored: Fitted) -> dict[str, float]:
