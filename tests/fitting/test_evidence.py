@@ -18,6 +18,7 @@ from leuven_rt.data.reconstruction import (
     held_by_drive,
     median_excursion,
     noisy_position,
+    released_at_stops,
     resolution,
     reversals,
     travel_since_reversal,
@@ -171,6 +172,40 @@ def test_a_stop_where_the_force_wanders_is_held_by_the_drive() -> None:
 def test_a_stop_where_the_force_holds_is_not() -> None:
     x, v, f, dt = stop_and_creep(0.0)
     assert not held_by_drive(x, v, f, dt).any()
+
+
+def back_and_forth(released: bool, trips: int = 4) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """A 1 µm encoder at 1 kHz: ``trips`` times out at 2 mm/s and back, with a stop of 100 samples
+    after each leg; Coulomb level 1, an offset of 0.3, force noise 0.01. At a stop the friction
+    holds the force it slid with, or (``released``) lets go of it, as a static curve does."""
+    dt, step = 1e-3, 1e-6
+    leg = [np.full(300, 2e-3), np.zeros(100), np.full(300, -2e-3), np.zeros(100)]
+    v = np.concatenate(leg * trips)
+    x = np.round(np.cumsum(v) * dt / step) * step
+    direction = np.sign(v)
+    if not released:
+        moving = np.flatnonzero(v)
+        direction = np.sign(v[moving[np.maximum(np.searchsorted(moving, np.arange(v.size), "right") - 1, 0)]])
+    f = 0.3 + direction + np.random.default_rng(5).normal(0.0, 0.01, v.size)
+    return x, v, f, dt
+
+
+def test_stops_that_hold_one_force_whichever_way_the_axis_came_let_friction_go() -> None:
+    x, v, f, dt = back_and_forth(released=True)
+    let_go = released_at_stops(x, v, f, dt)
+    stopped = v == 0
+    assert let_go[stopped].mean() > 0.9  # each stop, but its first sample (the encoder's last count)
+    assert not let_go[~stopped].any()
+
+
+def test_stops_that_hold_the_force_the_axis_slid_with_do_not() -> None:
+    x, v, f, dt = back_and_forth(released=False)
+    assert not released_at_stops(x, v, f, dt).any()
+
+
+def test_too_few_stops_from_a_direction_say_nothing() -> None:
+    x, v, f, dt = back_and_forth(released=True, trips=2)
+    assert not released_at_stops(x, v, f, dt).any()
 
 
 def test_the_rounds_weigh_out_a_wandering_stop_only_where_a_velocity_drives_the_model() -> None:

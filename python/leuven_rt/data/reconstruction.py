@@ -157,6 +157,11 @@ REST_RUN = 5
 REST_SHARE = 1e-3
 #: A stop whose force spreads by more than this many times the noise is held by the drive.
 WANDER = 3.0
+#: A log whose stops all hold one force, the means of its stops spread by less than this share of
+#: the force between sliding in +x and in −x, releases its friction at a stop.
+RELEASED = 0.03
+#: ... judged only where at least this many stops were reached from each direction.
+RELEASE_STOPS = 3
 
 
 def before_first_count(x: FloatArray) -> NDArray[np.bool_]:
@@ -169,23 +174,70 @@ def before_first_count(x: FloatArray) -> NDArray[np.bool_]:
     return out
 
 
-def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
-    """Samples where a log with a velocity column shows the axis stopped while the force wanders:
-    runs of at least :data:`REST_RUN` samples where the encoder does not count and the velocity
-    moves the axis by less than :data:`REST_SHARE` of a step per sample, whose force spreads about
-    its mean by more than :data:`WANDER` times the noise (read from the force's one-sample
-    differences, robustly). Friction that holds at a stop holds its force there; a force that
-    wanders while the axis stands is the drive's (a closed loop's integrator winding up on a stuck
-    mass), which no model driven by the motion can follow."""
+def stops(x: FloatArray, v: FloatArray, dt: float) -> list[tuple[int, int]]:
+    """The runs ``[begin, end)`` of at least :data:`REST_RUN` samples where a log with a velocity
+    column shows the axis stopped: the encoder does not count and the velocity moves the axis by
+    less than :data:`REST_SHARE` of a step per sample."""
     step = resolution(x)
     still = np.zeros(x.size, dtype=bool)
     still[1:] = (np.diff(x) == 0) & (np.abs(v[1:]) * dt < REST_SHARE * step)
     edges = np.flatnonzero(np.diff(np.concatenate(([0], still.astype(np.int8), [0]))))
+    return [(int(b), int(e)) for b, e in zip(edges[::2], edges[1::2], strict=True) if e - b >= REST_RUN]
+
+
+def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
+    """Samples where a log with a velocity column shows the axis stopped (:func:`stops`) while the
+    force wanders: it spreads about its mean by more than :data:`WANDER` times the noise (read
+    from the force's one-sample differences, robustly). Friction that holds at a stop holds its
+    force there; a force that wanders while the axis stands is the drive's (a closed loop's
+    integrator winding up on a stuck mass), which no model driven by the motion can follow."""
     differences = np.diff(f)
     noise = robust_spread(differences) / math.sqrt(2.0)
     out = np.zeros(x.size, dtype=bool)
-    for begin, end in zip(edges[::2], edges[1::2], strict=True):
-        if end - begin >= REST_RUN and float(np.std(f[begin:end])) > WANDER * noise:
+    for begin, end in stops(x, v, dt):
+        if float(np.std(f[begin:end])) > WANDER * noise:
+            out[begin:end] = True
+    return out
+
+
+def stop_spread(
+    x: FloatArray, v: FloatArray, f: FloatArray, dt: float
+) -> tuple[float, list[tuple[int, int]]]:
+    """How far the forces a log with a velocity column holds at its stops differ: the spread of
+    the stops' means (:func:`stops`, after the axis first moves) over the force between sliding
+    in +x and in −x (the medians of the faster half of the moving samples), with the stops; nan
+    where fewer than :data:`RELEASE_STOPS` stops were reached from either direction or the axis
+    did not slide both ways."""
+    moving = np.flatnonzero(v != 0)
+    if moving.size == 0:
+        return math.nan, []
+    runs = [(b, e) for b, e in stops(x, v, dt) if b > moving[0]]
+    arrived = [float(np.sign(v[moving[np.searchsorted(moving, b) - 1]])) for b, _ in runs]
+    if min(arrived.count(1.0), arrived.count(-1.0)) < RELEASE_STOPS:
+        return math.nan, runs
+    speed = np.abs(v[moving])
+    fast = moving[speed >= np.median(speed)]
+    forward, backward = f[fast[v[fast] > 0]], f[fast[v[fast] < 0]]
+    if forward.size == 0 or backward.size == 0:
+        return math.nan, runs
+    split = float(np.median(forward) - np.median(backward))
+    means = np.array([np.mean(f[b:e]) for b, e in runs])
+    return (float(np.std(means)) / split if split > 0 else math.nan), runs
+
+
+def released_at_stops(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
+    """The stops (:func:`stops`) of a log with a velocity column whose friction lets go there: every
+    stop holds one force, whichever way the axis arrived (:func:`stop_spread` below
+    :data:`RELEASED`). Friction that holds at a stop holds the force it slid with, which differs
+    with the direction; a force that is the same at every stop is what a static friction curve
+    gives at zero speed, or a drive that drops its force while a brake holds the axis. A model
+    whose state holds friction cannot follow it, and what it does there tells nothing of an
+    effect: a Stribeck dip or a level falling where the stops are would buy error back at those
+    stops alone."""
+    out = np.zeros(x.size, dtype=bool)
+    spread, runs = stop_spread(x, v, f, dt)
+    if spread < RELEASED:
+        for begin, end in runs:
             out[begin:end] = True
     return out
 
@@ -274,7 +326,10 @@ __all__ = [
     "median_excursion",
     "noisy_position",
     "reconstruct",
+    "released_at_stops",
     "resolution",
     "reversals",
+    "stop_spread",
+    "stops",
     "travel_since_reversal",
 ]

@@ -51,6 +51,7 @@ from ..data.reconstruction import (  # noqa: E402
     median_excursion,
     noisy_position,
     reconstruct,
+    released_at_stops,
     resolution,
 )
 from ..data.records import MotionData  # noqa: E402
@@ -1310,6 +1311,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
         # A force that wanders while the axis stands is the drive's (a controller's), and the
         # model holds its state: what the force does there tells nothing of an effect.
         weight[held_by_drive(record.x, record.v, record.f, record.dt)] = 0.0
+        # A force that is the same at every stop, whichever way the axis came, was let go there
+        # (holdout-v1's static curves): a held level, a Stribeck dip or a level falling where the
+        # stops are would each be named for those stops alone.
+        weight[released_at_stops(record.x, record.v, record.f, record.dt)] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
