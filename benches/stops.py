@@ -1,6 +1,6 @@
 """How far the forces a log holds at its stops differ, per log with a velocity column: the spread
 of the stops' means over the force between sliding in +x and in −x
-(``leuven_rt.data.reconstruction.stop_spread``), and the samples the rounds weigh out as released
+(``leuven_rt.data.reconstruction.stops_and_spread``), and the samples the rounds weigh out as released
 (below ``RELEASED``; docs/effects.md#the-motion-a-model-is-driven-by).
 
     python benches/stops.py FOLDER [FOLDER ...]
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from leuven_rt.data.reconstruction import RELEASED, released_at_stops, stop_spread
+from leuven_rt.data.reconstruction import RELEASED, released_at_stops, stops_and_spread
 from leuven_rt.data.records import load_columns
 
 
@@ -33,7 +33,7 @@ def main() -> None:
                 continue
             t, x, v, f = (columns[name] for name in ("t", "x", "v", "f"))
             dt = float(np.median(np.diff(t)))
-            spread, runs = stop_spread(x, v, f, dt)
+            runs, spread = stops_and_spread(x, v, f, dt)
             out = int(np.count_nonzero(released_at_stops(x, v, f, dt)))
             shown = "too few stops" if math.isnan(spread) else f"{spread:.4f}"
             print(f"| {folder.name}/{path.stem} | {len(runs)} | {shown} | {out} of {x.size} |", flush=True)

@@ -63,7 +63,8 @@ def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apar
     diagnosis = offset_named
     assert diagnosis.named_effects == ["offset"]
     [pair] = json.loads(diagnosis.to_json())["stand_ins"]
-    assert set(pair) == {"named", "stand_in", "gain", "factor"}
+    assert set(pair) == {"named", "stand_in", "gain", "factor", "stops"}
+    assert pair["stops"] is None  # its friction holds at a stop
     assert (pair["named"], pair["stand_in"]) == ("offset", "asymmetry")
     assert abs(pair["gain"]) < 0.01
     assert pair["factor"] < -0.01
@@ -75,14 +76,20 @@ def test_the_report_says_where_a_named_effect_and_its_stand_in_are_not_told_apar
         in diagnosis.story().splitlines()
     )
 
-    def told(gain: float, factor: float | None = None) -> str:
-        return dataclasses.replace(diagnosis, stand_ins=[{**pair, "gain": gain, "factor": factor}]).story()
+    def told(gain: float, factor: float | None = None, stops: float | None = None) -> str:
+        changed = {**pair, "gain": gain, "factor": factor, "stops": stops}
+        return dataclasses.replace(diagnosis, stand_ins=[changed]).story()
 
     assert (
         "does not tell the two apart by their fit; the asymmetry as one factor on every -x level fits "
         "0.25 units better than the offset" in told(0.0, 0.25)
     )
     assert "does not tell the two apart\n" in told(0.0) + "\n"
+    # On a log whose friction lets go at its stops, the force there decides before the factor.
+    stops = "by their fit; with the stops where friction lets go counted, it gains -1.29 units"
+    assert any(
+        line.endswith(f"does not tell the two apart {stops}") for line in told(0.0, None, -1.29).splitlines()
+    )
 
     assert "in place of `offset`: gains 0.00 units" in told(-0.001)  # never "-0.00"
     assert (

@@ -221,6 +221,67 @@ def test_without_a_viscous_slope_or_stribeck_rise_one_factor_does_not_tell_the_p
     assert pair.factor is not None and abs(pair.factor) < select.TIE
 
 
+def stopping(levels: tuple[float, float], offset: float, released: bool) -> MotionData:
+    """Slides at 5–50 mm/s each way with a stop of 100 samples after each, the velocity logged:
+    Coulomb levels ``levels`` (+x, −x), viscous 2 N·s/m, plus ``offset`` and noise of rms
+    :data:`NOISE`. At a stop the friction holds its force (a stiff element), or lets go of it
+    (``released``), as a static friction curve does at zero speed."""
+    speeds = np.geomspace(5e-3, 5e-2, 6)
+    v = np.concatenate([np.concatenate([np.full(300, s), np.zeros(100), np.full(300, -s), np.zeros(100)])
+                        for s in speeds])  # fmt: skip
+    x = np.cumsum(v) * DT
+    t = np.arange(v.size) * DT
+    plus, minus = levels
+    if released:
+        f = np.where(v > 0, plus, np.where(v < 0, -minus, 0.0)) + 2.0 * v
+    else:
+        truth = lr.Params(Fc=plus, Fs=plus, Vs=0.01, delta=2.0, n=2.0, sigma2=2.0, Fc_neg=minus, Fs_neg=minus,
+                          W=[2.0 * plus], Delta=[1e-9])  # fmt: skip
+        f = lr.simulate(truth, v, DT)
+    noise = np.random.default_rng(1).standard_normal(v.size)
+    return MotionData(t, x, f + offset + NOISE * noise, v=v)
+
+
+@pytest.mark.parametrize(
+    ("levels", "offset", "wrong", "right"),
+    [((1.0, 0.6), 0.0, "offset", "asymmetry"), ((0.8, 0.8), 0.2, "asymmetry", "offset")],
+)
+def test_where_friction_lets_go_at_a_stop_the_force_there_tells_an_offset_from_an_asymmetry(
+    levels: tuple[float, float], offset: float, wrong: str, right: str
+) -> None:
+    """The −x Coulomb level 0.6 times the +x one and the same viscous slope, or an offset of 0.2
+    within both levels: while the axis slides the two models give the same force. Where the
+    friction lets go at every stop, the force there is the measurement's own: the offset, or
+    nothing."""
+    base, final, steps, target, scales = named(stopping(levels, offset, released=True), wrong)
+    assert target.let_go is not None and target.let_go.sum() > 0.9 * 12 * 100
+    assert not target.weight[target.let_go].any()  # weighed out of the fit
+    settings = Settings()
+    said: list[str] = []
+    exchanged, regrown, stand_ins = select._exchange(
+        base, final, steps, scales, target, settings, UNIT, said.append
+    )
+    assert exchanged.structure == BASE.with_effect(right)
+    assert [step.effect for step in regrown] == [right]
+    assert len(said) == 1 and "the stops where friction lets go" in said[0]
+    [pair] = stand_ins
+    assert (pair.named, pair.stand_in) == (right, wrong)
+    assert pair.stops is not None and pair.stops < -settings.significance  # the one replaced
+
+
+def test_where_friction_holds_at_a_stop_the_stops_tell_nothing() -> None:
+    """The same Coulomb-only asymmetry, its friction held at every stop: no stop lets go, and the
+    offset named stays (one factor on the −x levels would scale the viscous slope too)."""
+    base, final, steps, target, scales = named(stopping((1.0, 0.6), 0.0, released=False), "offset")
+    assert target.let_go is None
+    exchanged, kept_steps, stand_ins = select._exchange(
+        base, final, steps, scales, target, Settings(), UNIT, lambda _: None
+    )
+    assert exchanged is final and kept_steps is steps
+    [pair] = stand_ins
+    assert pair.stops is None
+
+
 def test_no_stand_in_is_tried_where_both_are_named() -> None:
     base, final, steps, target, scales = named(log(ASYMMETRIC), "offset")
     both = fit(final.structure.with_effect("asymmetry"), scales, target, final.theta)

@@ -21,6 +21,7 @@ from leuven_rt.data.reconstruction import (
     released_at_stops,
     resolution,
     reversals,
+    stops_and_spread,
     travel_since_reversal,
 )
 from leuven_rt.data.records import MotionData
@@ -203,9 +204,22 @@ def test_stops_that_hold_the_force_the_axis_slid_with_do_not() -> None:
     assert not released_at_stops(x, v, f, dt).any()
 
 
-def test_too_few_stops_from_a_direction_say_nothing() -> None:
-    x, v, f, dt = back_and_forth(released=True, trips=2)
-    assert not released_at_stops(x, v, f, dt).any()
+@pytest.mark.parametrize(("trips", "judged"), [(2, False), (3, True)])
+def test_fewer_than_three_stops_from_a_direction_say_nothing(trips: int, judged: bool) -> None:
+    x, v, f, dt = back_and_forth(released=True, trips=trips)
+    runs, spread = stops_and_spread(x, v, f, dt)
+    assert len(runs) == 2 * trips
+    assert math.isnan(spread) != judged
+    assert released_at_stops(x, v, f, dt).any() == judged
+
+
+def test_no_spread_is_read_without_a_count_or_with_the_force_against_the_motion() -> None:
+    x, v, f, dt = back_and_forth(released=True)
+    runs, spread = stops_and_spread(np.zeros_like(x), np.zeros_like(v), f, dt)
+    assert runs == [] and math.isnan(spread)
+    _, against = stops_and_spread(x, v, -f, dt)  # a force that pushes the axis: no friction split
+    assert math.isnan(against)
+    assert not released_at_stops(x, v, -f, dt).any()
 
 
 def test_the_rounds_weigh_out_a_wandering_stop_only_where_a_velocity_drives_the_model() -> None:

@@ -200,42 +200,46 @@ def held_by_drive(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDA
     return out
 
 
-def stop_spread(
+def stops_and_spread(
     x: FloatArray, v: FloatArray, f: FloatArray, dt: float
-) -> tuple[float, list[tuple[int, int]]]:
-    """How far the forces a log with a velocity column holds at its stops differ: the spread of
-    the stops' means (:func:`stops`, after the axis first moves) over the force between sliding
-    in +x and in −x (the medians of the faster half of the moving samples), with the stops; nan
-    where fewer than :data:`RELEASE_STOPS` stops were reached from either direction or the axis
-    did not slide both ways."""
+) -> tuple[list[tuple[int, int]], float]:
+    """The stops of a log with a velocity column (:func:`stops`, after the encoder first counts),
+    and how far the forces held there differ: the spread of the stops' means over the force
+    between sliding in +x and in −x (the medians of the faster half of the moving samples); nan
+    where fewer than :data:`RELEASE_STOPS` stops were reached from either direction (the direction
+    of the encoder's last count before the stop: a velocity decaying to rest, or a closed loop's
+    overshoot, can leave its last nonzero sample's sign the other way) or the axis did not slide
+    both ways."""
+    counts = np.flatnonzero(np.diff(x))
+    if counts.size == 0:
+        return [], math.nan
+    runs = [(b, e) for b, e in stops(x, v, dt) if b > counts[0]]
+    last = counts[np.searchsorted(counts, [b for b, _ in runs]) - 1]
+    arrived = np.sign(x[last + 1] - x[last])
+    if min(np.count_nonzero(arrived > 0), np.count_nonzero(arrived < 0)) < RELEASE_STOPS:
+        return runs, math.nan
     moving = np.flatnonzero(v != 0)
-    if moving.size == 0:
-        return math.nan, []
-    runs = [(b, e) for b, e in stops(x, v, dt) if b > moving[0]]
-    arrived = [float(np.sign(v[moving[np.searchsorted(moving, b) - 1]])) for b, _ in runs]
-    if min(arrived.count(1.0), arrived.count(-1.0)) < RELEASE_STOPS:
-        return math.nan, runs
     speed = np.abs(v[moving])
     fast = moving[speed >= np.median(speed)]
     forward, backward = f[fast[v[fast] > 0]], f[fast[v[fast] < 0]]
     if forward.size == 0 or backward.size == 0:
-        return math.nan, runs
+        return runs, math.nan
     split = float(np.median(forward) - np.median(backward))
     means = np.array([np.mean(f[b:e]) for b, e in runs])
-    return (float(np.std(means)) / split if split > 0 else math.nan), runs
+    return runs, (float(np.std(means)) / split if split > 0 else math.nan)
 
 
 def released_at_stops(x: FloatArray, v: FloatArray, f: FloatArray, dt: float) -> NDArray[np.bool_]:
     """The stops (:func:`stops`) of a log with a velocity column whose friction lets go there: every
-    stop holds one force, whichever way the axis arrived (:func:`stop_spread` below
-    :data:`RELEASED`). Friction that holds at a stop holds the force it slid with, which differs
-    with the direction; a force that is the same at every stop is what a static friction curve
-    gives at zero speed, or a drive that drops its force while a brake holds the axis. A model
-    whose state holds friction cannot follow it, and what it does there tells nothing of an
+    stop holds one force, whichever way the axis arrived (the spread of :func:`stops_and_spread`
+    below :data:`RELEASED`). Friction that holds at a stop holds the force it slid with, which
+    differs with the direction; a force that is the same at every stop is what a static friction
+    curve gives at zero speed, or a drive that drops its force while a brake holds the axis. A
+    model whose state holds friction cannot follow it, and what it does there tells nothing of an
     effect: a Stribeck dip or a level falling where the stops are would buy error back at those
     stops alone."""
     out = np.zeros(x.size, dtype=bool)
-    spread, runs = stop_spread(x, v, f, dt)
+    runs, spread = stops_and_spread(x, v, f, dt)
     if spread < RELEASED:
         for begin, end in runs:
             out[begin:end] = True
@@ -329,7 +333,7 @@ __all__ = [
     "released_at_stops",
     "resolution",
     "reversals",
-    "stop_spread",
     "stops",
+    "stops_and_spread",
     "travel_since_reversal",
 ]

@@ -158,14 +158,20 @@ class Diagnosis:
                 if gain < 0
                 else "it gains more, but not one-sidedly over the record"
             )
-            factor = pair.get("factor")
+            factor, stops = pair.get("factor"), pair.get("stops")
+            if abs(pair["gain"]) <= significance and (factor is not None or stops is not None):
+                told += " by their fit"
             if factor is not None:
                 # Where neither gained the threshold one-sidedly in the other's place, the
                 # asymmetry as one −x factor against the offset decides (fitting.select._exchange).
                 one = "the asymmetry as one factor on every -x level"
                 better, worse = (one, "the offset") if factor >= 0 else ("the offset", one)
-                told += " by their fit" if abs(pair["gain"]) <= significance else ""
                 told += f"; {better} fits {abs(factor):.2f} units better than {worse}"
+            if stops is not None:
+                # On a log whose friction lets go at its stops, the force there decides before the
+                # factor does.
+                at_stops = round(stops, 2) + 0.0  # not "-0.00"
+                told += f"; with the stops where friction lets go counted, it gains {at_stops:.2f} units"
             lines.append(f"`{pair['stand_in']}` in place of `{pair['named']}`: gains {gain:.2f} units of "
                          f"max(σ², floor²), an effect counts above {significance:g}: {told}")  # fmt: skip
         verdict = "significant" if self.unexplained_significant else "no more than noise and the floor"

@@ -84,9 +84,10 @@ class Sample:
         sampled = Motion(motion.reconstruction, motion.input, drive, v, x, a, motion.dt)
         weight = np.where(self.lead, 0.0, target.weight[take])
         stride = max(1, math.ceil(np.count_nonzero(weight) / fit_rows))
+        let_go = None if target.let_go is None else target.let_go[take] & ~self.lead
         return replace(target, force=target.force[take], weight=weight, motion=sampled, tau=target.tau[take],
                        recorded_x=target.recorded_x[take], judged=target.judged[take] & ~self.lead,
-                       stride=stride)  # fmt: skip
+                       stride=stride, let_go=let_go)  # fmt: skip
 
 
 def segments(motion: Motion, widest: float, budget: int) -> Sample | None:

@@ -142,12 +142,16 @@ class StandIn:
     screened fit against the one replaced). ``factor``: where neither gained the threshold over
     the other, what the asymmetry as one factor on every −x level gains over the offset, both in
     the named one's place (negative: the offset fits better; None where not fitted), which
-    decides between the two when it exceeds :data:`TIE` units, one-sided."""
+    decides between the two when it exceeds :data:`TIE` units, one-sided. ``stops``: on a log
+    whose friction lets go at its stops, what the stand-in gains over the named one with those
+    stops counted (:func:`_at_stops`; negative: it does worse; None on other logs), which decides
+    when it exceeds ``significance`` units, one-sided, before the factor does."""
 
     named: str
     stand_in: str
     gain: float
     factor: float | None = None
+    stops: float | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -716,12 +720,17 @@ def _exchange(
             swapped = _in_place(final, named, other, scales, target)
             gain = (final.mse - swapped.mse) / unit
             factor: float | None = None
+            at_rest = _at_stops(final, swapped, target, scales)
             if _significant(final, swapped, target, threshold, settings):
                 say(f"{other} in place of {named}: gains {gain:.2f} units")
+            elif at_rest is not None and _significant(*at_rest, threshold, settings):
+                at_stops = _gain_at_stops(at_rest, unit)
+                where = "with the stops where friction lets go"
+                say(f"{other} in place of {named}: gains {at_stops:.2f} units {where}")
             else:
                 pair_fits = _offset_and_factor(final, named, swapped, scales, target)
                 if pair_fits is None:
-                    stand_ins.append(StandIn(named, other, gain))
+                    stand_ins.append(StandIn(named, other, gain, stops=_gain_at_stops(at_rest, unit)))
                     continue
                 offset, factored = pair_fits
                 factor = (offset.mse - factored.mse) / unit
@@ -737,16 +746,49 @@ def _exchange(
                     swapped = offset
                     why = f"it fits {-factor:.2f} units better than the asymmetry as one -x factor"
                 else:
-                    stand_ins.append(StandIn(named, other, gain, factor))
+                    stand_ins.append(StandIn(named, other, gain, factor, _gain_at_stops(at_rest, unit)))
                     continue
                 say(f"{other} in place of {named}: {why}")
             replaced = final
             final = fit(swapped.structure, scales, target, swapped.theta)
             added[added.index(named)] = other
             steps = _regrow(base, final, added, scales, target)
-            stand_ins.append(StandIn(other, named, (final.mse - replaced.mse) / unit, factor))
+            at_stops = _gain_at_stops(_at_stops(final, replaced, target, scales), unit)
+            stand_ins.append(StandIn(other, named, (final.mse - replaced.mse) / unit, factor, at_stops))
             break  # not back again in the same pass
     return final, steps, stand_ins
+
+
+def _at_stops(
+    final: Fitted, stand_in: Fitted, target: Target, scales: Scales
+) -> tuple[Fitted, Fitted, Target] | None:
+    """``final`` and ``stand_in`` (fitted in a named one's place) with the stops where the log's
+    friction lets go (:attr:`Target.let_go`) counted, each model's force there what it holds
+    besides friction (the position force, offset and inertia: the model driven by no motion), and
+    the target so weighted; None where the log has no such stops. Friction held by a state is what
+    the model gives at a stop, and a static friction curve gives zero there: an offset is a force
+    in the measurement, there whatever friction does, and an asymmetry of the Coulomb levels
+    alone, which gives the same force as the offset while the axis slides, is not (holdout-v1 h03
+    and h05)."""
+    let_go = target.let_go
+    if let_go is None or not let_go.any():  # a long record's sample can hold none of them
+        return None
+    counted = dataclasses.replace(target, weight=np.where(let_go & target.judged, 1.0, target.weight))
+    still = np.zeros(let_go.size)
+    motion = dataclasses.replace(target.motion, drive=still, v=still)
+
+    def at_rest(fitted: Fitted) -> Fitted:
+        rest = evaluate(fitted.structure, scales, fitted.theta, motion, target.tau, None).force
+        force = np.where(let_go, rest, fitted.force)
+        evaluation = dataclasses.replace(fitted.evaluation, force=force)
+        return dataclasses.replace(fitted, evaluation=evaluation, mse=counted.mse(force))
+
+    return at_rest(final), at_rest(stand_in), counted
+
+
+def _gain_at_stops(at_rest: tuple[Fitted, Fitted, Target] | None, unit: float) -> float | None:
+    """What the stand-in gains over the named one with the stops counted (:func:`_at_stops`)."""
+    return None if at_rest is None else (at_rest[0].mse - at_rest[1].mse) / unit
 
 
 def _offset_and_factor(
@@ -1307,6 +1349,7 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
     # held the load; a model with an offset and no friction held missed it by the load, and an
     # asymmetry, which predicts nothing held, won by that alone).
     weight[before_first_count(record.x)] = 0.0
+    let_go = None
     if reconstruction.source == "velocity" and record.v is not None:
         # A force that wanders while the axis stands is the drive's (a controller's), and the
         # model holds its state: what the force does there tells nothing of an effect.
@@ -1314,7 +1357,8 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
         # A force that is the same at every stop, whichever way the axis came, was let go there
         # (holdout-v1's static curves): a held level, a Stribeck dip or a level falling where the
         # stops are would each be named for those stops alone.
-        weight[released_at_stops(record.x, record.v, record.f, record.dt)] = 0.0
+        let_go = released_at_stops(record.x, record.v, record.f, record.dt)
+        weight[let_go] = 0.0
     moving = (weight > 0) & (motion.v != 0)
     step = resolution(record.x)
     stroke = float(np.ptp(record.x))
@@ -1344,7 +1388,10 @@ def prepare(record: MotionData, reconstruction: Reconstruction, noisy: bool) -> 
                     half_stroke=0.5 * stroke)  # fmt: skip
     tau = np.linspace(-1.0, 1.0, samples)
     stride = max(1, math.ceil(np.count_nonzero(weight) / FIT_ROWS))
-    return Target(record.f, weight, motion, tau, record.x, _every_sample(samples) > 0, stride), scales
+    let_go = let_go if let_go is not None and let_go.any() else None
+    return Target(
+        record.f, weight, motion, tau, record.x, _every_sample(samples) > 0, stride, let_go=let_go
+    ), scales
 
 
 def _coulomb_viscous(target: Target, structure: Structure) -> dict[str, float]:

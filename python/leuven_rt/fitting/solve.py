@@ -86,6 +86,10 @@ class Target:
     scale: float | None = None
     """With a scale, errors are counted robustly (``LOSS`` at this scale): a sample missed by far
     more than the scale counts little more than one missed by the scale."""
+    let_go: NDArray[np.bool_] | None = None
+    """The stops where the log's friction lets go (:func:`~leuven_rt.data.reconstruction.released_at_stops`),
+    weighed out of the fit: there the force is the measurement's own, which tells an offset from
+    an asymmetry of the levels (docs/effects.md#how-an-effect-is-chosen, stand-ins)."""
 
     def unweighted(self, model_force: FloatArray) -> FloatArray:
         """Each sample's loss before its weight: the squared error, or its robust form with a
