@@ -224,26 +224,34 @@ class CError(ctypes.Structure):
     ]
 
 
+def cargo_built(arguments: list[str], target: str, what: str) -> list[str]:
+    """The files ``cargo build arguments`` (debug) made for ``target``, from cargo's own report
+    of what it built. Skips the calling test where cargo is not on PATH."""
+    if shutil.which("cargo") is None:
+        pytest.skip(f"cargo is not on PATH: {what} cannot be built to compare with")
+    command = ["cargo", "build", "--quiet", *arguments, "--message-format=json"]
+    root = Path(__file__).parents[1]
+    done = subprocess.run(command, cwd=root, capture_output=True, text=True, timeout=1200, check=False)
+    assert done.returncode == 0, done.stderr
+    built: list[str] = []
+    for message in map(json.loads, done.stdout.splitlines()):
+        if message.get("reason") == "compiler-artifact" and message["target"]["name"] == target:
+            # An example or binary is its executable; a library, its shared object.
+            executable = message.get("executable")
+            built += (
+                [executable]
+                if executable
+                else [name for name in message["filenames"] if name.endswith(".so")]
+            )
+    assert built, f"cargo built nothing for {target}"
+    return built
+
+
 def built_c_library() -> ctypes.CDLL:
     """The C library of this checkout (``cargo build -p gms-ffi``, debug; the path from cargo's
     own report of what it built), with the argument types of the calls the tests make. Skips
     the calling test where cargo is not on PATH."""
-    if shutil.which("cargo") is None:
-        pytest.skip("cargo is not on PATH: the C library cannot be built to compare with")
-    command = ["cargo", "build", "--quiet", "-p", "gms-ffi", "--message-format=json"]
-    root = Path(__file__).parents[1]
-    done = subprocess.run(command, cwd=root, capture_output=True, text=True, timeout=1200, check=False)
-    assert done.returncode == 0, done.stderr
-    built = [
-        name
-        for line in done.stdout.splitlines()
-        if (message := json.loads(line)).get("reason") == "compiler-artifact"
-        and message["target"]["name"] == "gms_ffi"
-        for name in message["filenames"]
-        if name.endswith(".so")
-    ]
-    assert built, "cargo built no libgms_ffi.so"
-    library = ctypes.CDLL(built[0])
+    library = ctypes.CDLL(cargo_built(["-p", "gms-ffi"], "gms_ffi", "the C library")[0])
     handle, status = ctypes.c_void_p, ctypes.c_int32
     library.leuven_rt_compensator_create_from_json.argtypes = [
         ctypes.c_char_p, ctypes.c_size_t, ctypes.c_double, ctypes.c_int32,

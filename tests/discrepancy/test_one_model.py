@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import ctypes
 import json
+import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import leuven_rt as lr
-from conftest import CError, built_c_library
+from conftest import CError, built_c_library, cargo_built
 from leuven_rt.data.records import MotionData
 from leuven_rt.discrepancy.hidden import make_hidden
 from leuven_rt.errors import DataError
@@ -105,6 +106,22 @@ def c_compensated(text: str, prediction: lr.Prediction) -> np.ndarray:
     return out
 
 
+def rust_compensated(path: Path, prediction: lr.Prediction) -> np.ndarray:
+    """The same through Rust alone: gms-file's ``compensate`` example, which loads the file with
+    the same reader and steps gms-dyn's compensator."""
+    [program] = cargo_built(["-p", "gms-file", "--example", "compensate"], "compensate", "the Rust example")
+    velocity = prediction.reconstruction.source == "velocity"
+    arguments = ["feedforward", repr(float(prediction.x[0]))] if velocity else ["observer"]
+    columns = (prediction.v, prediction.x) if velocity else (prediction.x,)
+    signal = "".join(
+        ",".join(repr(float(value)) for value in row) + "\n" for row in zip(*columns, strict=True)
+    )
+    done = subprocess.run([program, str(path), repr(prediction.dt), *arguments], input=signal,
+                          capture_output=True, text=True, timeout=600, check=False)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    return np.array([float(line) for line in done.stdout.splitlines()])
+
+
 def test_the_compensator_running_the_written_file_gives_predicts_friction(
     identified: tuple[MotionData, lr.Identification], tmp_path: Path
 ) -> None:
@@ -119,6 +136,8 @@ def test_the_compensator_running_the_written_file_gives_predicts_friction(
         )
     from_c = c_compensated(path.read_text(), prediction)
     np.testing.assert_allclose(from_c, prediction.friction, rtol=0.0, atol=1e-9 * scale)
+    from_rust = rust_compensated(path, prediction)
+    np.testing.assert_allclose(from_rust, prediction.friction, rtol=0.0, atol=1e-9 * scale)
 
 
 def test_a_round_trip_through_the_file_predicts_the_same(
