@@ -217,6 +217,8 @@ def test_no_spread_is_read_without_a_count_or_with_the_force_against_the_motion(
     x, v, f, dt = back_and_forth(released=True)
     runs, spread = stops_and_spread(np.zeros_like(x), np.zeros_like(v), f, dt)
     assert runs == [] and math.isnan(spread)
+    runs, spread = stops_and_spread(x, np.zeros_like(v), f, dt)  # the encoder counts, `v` never moves
+    assert len(runs) > 0 and math.isnan(spread)
     _, against = stops_and_spread(x, v, -f, dt)  # a force that pushes the axis: no friction split
     assert math.isnan(against)
     assert not released_at_stops(x, v, -f, dt).any()

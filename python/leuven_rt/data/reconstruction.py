@@ -209,7 +209,7 @@ def stops_and_spread(
     where fewer than :data:`RELEASE_STOPS` stops were reached from either direction (the direction
     of the encoder's last count before the stop: a velocity decaying to rest, or a closed loop's
     overshoot, can leave its last nonzero sample's sign the other way) or the axis did not slide
-    both ways."""
+    both ways by its velocity."""
     counts = np.flatnonzero(np.diff(x))
     if counts.size == 0:
         return [], math.nan
@@ -219,6 +219,8 @@ def stops_and_spread(
     if min(np.count_nonzero(arrived > 0), np.count_nonzero(arrived < 0)) < RELEASE_STOPS:
         return runs, math.nan
     moving = np.flatnonzero(v != 0)
+    if moving.size == 0:  # a velocity column that never moves: no sliding force to compare with
+        return runs, math.nan
     speed = np.abs(v[moving])
     fast = moving[speed >= np.median(speed)]
     forward, backward = f[fast[v[fast] > 0]], f[fast[v[fast] < 0]]

@@ -720,8 +720,9 @@ def _exchange(
             swapped = _in_place(final, named, other, scales, target)
             gain = (final.mse - swapped.mse) / unit
             factor: float | None = None
-            at_rest = _at_stops(final, swapped, target, scales)
-            if _significant(final, swapped, target, threshold, settings):
+            shown = _significant(final, swapped, target, threshold, settings)
+            at_rest = None if shown else _at_stops(final, swapped, target, scales)
+            if shown:
                 say(f"{other} in place of {named}: gains {gain:.2f} units")
             elif at_rest is not None and _significant(*at_rest, threshold, settings):
                 at_stops = _gain_at_stops(at_rest, unit)
