@@ -24,9 +24,13 @@ from leuven_rt.data.records import load_columns
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folders", nargs="+", type=Path)
+    folders = parser.parse_args().folders
+    for folder in folders:
+        if not folder.is_dir():
+            parser.error(f"FOLDER must be a folder of CSV logs, got {str(folder)!r}")
     print(f"| log | stops | spread / split | weighed out (below {RELEASED}) |")
     print("|---|---:|---:|---:|")
-    for folder in parser.parse_args().folders:
+    for folder in folders:
         for path in sorted(folder.glob("*.csv")):
             columns = load_columns(path)
             if "v" not in columns:

@@ -122,6 +122,38 @@ def rust_compensated(path: Path, prediction: lr.Prediction) -> np.ndarray:
     return np.array([float(line) for line in done.stdout.splitlines()])
 
 
+def test_the_rust_example_refuses_what_it_cannot_run(
+    identified: tuple[MotionData, lr.Identification], tmp_path: Path
+) -> None:
+    """A mode it does not know, a line of the wrong width or not a number, a DT that is no
+    number, a file that is no model: one line on stderr that says what was expected and what it
+    got (or names the file's key), and exit status 1."""
+    [program] = cargo_built(["-p", "gms-file", "--example", "compensate"], "compensate", "the Rust example")
+    _, result = identified
+    path = tmp_path / "model.json"
+    result.model.save(path)
+    broken = tmp_path / "broken.json"
+    broken.write_text(path.read_text().replace('"Fc"', '"Fk"', 1))
+
+    def run(*arguments: str, signal: str = "0.0\n") -> subprocess.CompletedProcess[str]:
+        return subprocess.run([program, *arguments], input=signal, capture_output=True, text=True,
+                              timeout=120, check=False)  # fmt: skip
+
+    refusals = {
+        'mode must be observer or feedforward, got "backwards"': run(str(path), "1e-3", "backwards"),
+        'line 1 of the signal must hold 1 number(s), got "0.0,1.0"': run(
+            str(path), "1e-3", "observer", signal="0.0,1.0\n"
+        ),
+        'line 2 of the signal must be a number, got "x"': run(
+            str(path), "1e-3", "observer", signal="0.0\nx\n"
+        ),
+        'DT must be a number, got "fast"': run(str(path), "fast", "observer"),
+        "`friction.Fk`: unknown key": run(str(broken), "1e-3", "observer"),
+    }
+    for message, done in refusals.items():
+        assert done.returncode == 1 and done.stderr.startswith(f"compensate: {message}"), done.stderr
+
+
 def test_the_compensator_running_the_written_file_gives_predicts_friction(
     identified: tuple[MotionData, lr.Identification], tmp_path: Path
 ) -> None:

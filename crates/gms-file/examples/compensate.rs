@@ -8,9 +8,11 @@
 //!
 //! Observer mode reads a position a line, feedforward mode a velocity and a position; X0 places
 //! a feedforward compensator's position terms. Each force is printed in the shortest form that
-//! reads back as the same double, so that a caller compares it bit for bit.
+//! reads back as the same double, so that a caller compares it bit for bit. A refusal is one
+//! line on standard error, and the exit status is 1.
 
 use std::io::{self, BufRead, BufWriter, Write};
+use std::process::ExitCode;
 
 use gms_core::Mode;
 use gms_dyn::{Compensator, Terms};
@@ -18,7 +20,24 @@ use gms_file::ModelFile;
 
 const USAGE: &str = "usage: compensate MODEL.json DT observer|feedforward [X0] < signal";
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(reason) => {
+            eprintln!("compensate: {reason}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `text` as a number, or a refusal that names `what` and shows what it got.
+fn number(what: &str, text: &str) -> Result<f64, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("{what} must be a number, got {text:?}"))
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let arguments: Vec<String> = std::env::args().skip(1).collect();
     let [path, dt, mode, rest @ ..] = arguments.as_slice() else {
         return Err(USAGE.into());
@@ -26,27 +45,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mode = match mode.as_str() {
         "observer" => Mode::Observer,
         "feedforward" => Mode::Feedforward,
-        _ => return Err(USAGE.into()),
+        _ => {
+            return Err(
+                format!("mode must be observer or feedforward, got {mode:?}; {USAGE}").into(),
+            )
+        }
     };
-    let start = rest.first().map(|x| x.parse::<f64>()).transpose()?;
+    let start = rest.first().map(|x| number("X0", x)).transpose()?;
     let model = ModelFile::load(path)?.validate()?;
     let terms = Terms {
         start,
         level: model.level,
         position_force: model.position_force,
     };
-    let mut compensator = Compensator::with_terms(&model.params, dt.parse()?, mode, &terms)?;
+    let mut compensator = Compensator::with_terms(&model.params, number("DT", dt)?, mode, &terms)?;
+    let width = if mode == Mode::Feedforward { 2 } else { 1 };
     let mut out = BufWriter::new(io::stdout().lock());
-    for line in io::stdin().lock().lines() {
+    for (index, line) in io::stdin().lock().lines().enumerate() {
         let line = line?;
+        let what = format!("line {} of the signal", index + 1);
         let values = line
             .split(',')
-            .map(|value| value.trim().parse::<f64>())
+            .map(|value| number(&what, value))
             .collect::<Result<Vec<_>, _>>()?;
-        let force = match (mode, values.as_slice()) {
-            (Mode::Feedforward, &[v, x]) => compensator.step_trajectory(v, x)?,
-            (Mode::Observer, &[x]) => compensator.step(x)?,
-            _ => return Err(format!("{line:?}: {USAGE}").into()),
+        let force = match *values.as_slice() {
+            [v, x] if width == 2 => compensator.step_trajectory(v, x)?,
+            [x] if width == 1 => compensator.step(x)?,
+            _ => {
+                return Err(
+                    format!("{what} must hold {width} number(s), got {line:?}; {USAGE}").into(),
+                )
+            }
         };
         writeln!(out, "{force:?}")?;
     }
